@@ -1,0 +1,177 @@
+// Configuration of the rover: const after loading and validation (src/config/ reads it from
+// config/marsokhod.toml). Every field carries its unit in its name and its source in the thesis
+// ("Mobility and Autonomous Reconfiguration of Marsokhod", 2008) in a comment. The defaults here
+// are the thesis' values so that pure code and its tests can build Params without a file; the
+// TOML file is still the one source operators edit, and the loader requires every key.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace marsokhod {
+
+// Motor indices in the layout (3.1):  [ BL,4  CL,2  FL,0 ] [ AB,7  AF,6 ] [ BR,5  CR,3  FR,1 ]
+inline constexpr std::size_t kMotorCount = 8;
+inline constexpr std::size_t kWheelCount = 6;
+inline constexpr std::size_t kSensorNode = 8;  // µ8
+enum MotorIndex : std::size_t {
+  kFrontLeft = 0,
+  kFrontRight = 1,
+  kCenterLeft = 2,
+  kCenterRight = 3,
+  kBackLeft = 4,
+  kBackRight = 5,
+  kFrontJoint = 6,  // AF, p6 = -γf
+  kRearJoint = 7,   // AB/AR, p7 = +γr
+};
+inline constexpr std::array<const char*, kMotorCount> kMotorNames = {"FL", "FR", "CL", "CR",
+                                                                     "BL", "BR", "AF", "AR"};
+
+using MotorVector = std::array<double, kMotorCount>;
+
+// Chapter 3.1 table and Figure 3.3.
+struct GeometryParams {
+  double joint_to_exterior_axle_m = 0.145;  // a
+  double center_axle_to_joint_m = 0.413;    // b
+  double wheel_radius_m = 0.125;            // r: 0.125 with blades on solid ground, 0.115 on granules
+  double track_width_m = 0.70;              // Quote 2.1 (fixed width 70 cm)
+  double blade_inclination_rad = 0.240;     // i
+};
+
+// Chapter 3.2: one communication cycle and the controller registers the driver configures.
+struct CycleParams {
+  double period_s = 0.0156;  // h (64 Hz); must stay below T(con) = (con+1)·65536/2 MHz
+  int con = 0;               // clock / velocity-estimation period register, 0..255
+  int icr = 511;             // PWM period register, 255..2047 (15.625 kHz at 511)
+};
+
+// Chapter 3.2 and 4.1–4.2.
+struct MotorParams {
+  int encoder_pulses_per_rev = 115000;      // enc conversion 2π/115000
+  double max_no_load_speed_radps = 2.827;   // w, Maxon RE 36 at 24 V
+  double nominal_supply_v = 24.0;           // Ū of (4.3), the calibration voltage
+  // ζ_i, Procedure 4.5; ζ2 and ζ5 were lost with the table: the mean of the four known wheels.
+  MotorVector scale{0.9896, 0.9808, 0.9707, 0.941, 0.9713, 0.9707, 0.9808, 0.9713};
+  MotorVector backlash_rad{0, 0, 0, 0, 0, 0, 0.052, 0.250};            // b, Procedure 4.1
+  MotorVector initial_position_rad{0, 0, 0, 0, 0, 0, -1.2121, 1.2121};  // p̄⁰, Remark 3.1
+};
+
+// W_icr(d) for d ≥ 0 (Procedure 4.4): strictly increasing, duty from 0 to 1; odd for d < 0.
+struct MotorCurveParams {
+  int icr = 511;
+  std::vector<double> duty;
+  std::vector<double> no_load_speed_radps;
+};
+
+// δ^j of (4.4) for one (h, con) pair (Procedure 4.8); delta[j] multiplies ŵ^(k−j).
+struct ResponseParams {
+  double period_s = 0.0157;
+  int con = 0;
+  std::vector<double> delta;
+};
+
+// (4.5) voltage drop and chapter 6.1 power management.
+struct PowerParams {
+  double duty_drop_v = 0.6;                // ξ [V]
+  double load_drop_v_s2_per_rad2 = 0.4;    // Ξ [V s²/rad²]
+  double max_drop_v = 1.5;                 // Υ [V]
+  double brownout_v = 19.5;                // the onboard computer rebooted here (Field Exp. 6.2)
+};
+
+// (4.7): l ≈ τ·B, B⁺ when τd ≥ 0, B⁻ when τd < 0.
+struct LoadParams {
+  double gain_same_sign_radps_per_nm = 0.030;      // B⁺
+  double gain_opposite_sign_radps_per_nm = 0.015;  // B⁻
+};
+
+// (5.3) joint bounds; the contracted bounds are ∓acos(a/b) from the geometry.
+struct JointParams {
+  double front_min_rad = -2.55;  // p6_min
+  double front_max_rad = -1.2121;  // p6_max = -acos(a/b)
+  double rear_min_rad = 1.2121;    // p7_min = +acos(a/b)
+  double rear_max_rad = 2.55;      // p7_max
+  double control_rate_per_s = 0.4;          // μ of (4.15) for the joints (Figure 4.11)
+  double control_speed_fraction = 0.5;      // C = fraction·w (Figure 4.11: C = w/2)
+  double target_tolerance_rad = 0.05;       // Procedure 4.17
+};
+
+// Chapter 5.1: F(c) = slope·c + offset, the exterior-to-center wheel speed ratio when spinning.
+struct SpinParams {
+  double slope_per_m = 5.3;
+  double offset = 0.04;
+};
+
+enum class LoadDistributionMode { kOff, kVariance, kSlip };  // off, h^v (6.5), h^s (6.6)
+
+// Chapter 6.3.
+struct LoadDistributionParams {
+  LoadDistributionMode mode = LoadDistributionMode::kOff;
+  double gain_per_radps = 5.0;          // the constant 5 /(rad/s) of (6.5), (6.6)
+  double max_correction_radps = 0.3;    // H
+};
+
+// Low-pass coefficients "λ close to 1" of chapters 3.3 and 6.2.1 (per cycle).
+struct FilterParams {
+  double gyro_null_lambda = 0.99;          // null-rate y, (3.4)
+  double reference_voltage_lambda = 0.99;  // Ū sequence, Procedure 3.5
+  double gravity_lambda = 0.95;            // g, chapter 6.2.1
+};
+
+// An affine conversion physical = gain·counts + offset.
+struct LinearConversion {
+  double gain = 0.0;
+  double offset = 0.0;
+  double operator()(double counts) const { return gain * counts + offset; }
+};
+
+// Procedure 3.3: ADC readings at −g and +g for one accelerometer axis.
+struct AccelerometerAxisParams {
+  double minus_g_counts = 0.0;
+  double plus_g_counts = 0.0;
+};
+
+// Chapter 3.3.
+struct SensorParams {
+  double gravity_mps2 = 9.81;
+  double gyro_radps_per_count = 0.0170;       // (3.4)
+  double gyro_null_typ_counts = 505.0;        // y TYP (490..520)
+  std::array<AccelerometerAxisParams, 3> accelerometer{
+      {{145.0, 413.0}, {120.0, 383.0}, {75.0, 376.0}}};  // Procedure 3.3
+  LinearConversion tilt_front{0.00495, -2.61};   // θf, Procedure 3.4
+  LinearConversion tilt_rear{-0.00526, 2.74};    // θr (SPEC: +2.74)
+  LinearConversion supply{0.06768, -41.0823};    // U, Procedure 3.5
+};
+
+// Field Experiment 6.7 and chapter 3.3's dead man's switch.
+struct SafetyParams {
+  double operator_timeout_s = 0.5;
+  int dead_man_dog = 4;  // µ8 stops the motors 0.2621·dog s after the last 0x80 request
+};
+
+struct Params {
+  GeometryParams geometry;
+  CycleParams cycle;
+  MotorParams motors;
+  // One W table per icr. W₅₁₁ is reconstructed (Figures 3.6/4.2 are lost) through the thesis'
+  // anchors: W(0.3) = 0.847 (Example 4.6), W⁻¹(2.429) ≈ 0.826, W(1) = w = 2.827.
+  std::vector<MotorCurveParams> motor_curves{
+      {511,
+       {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0},
+       {0.0, 0.19, 0.52, 0.847, 1.18, 1.50, 1.81, 2.10, 2.37, 2.60, 2.827}}};
+  // One δ table per (h, con), the table after Procedure 4.8.
+  std::vector<ResponseParams> responses{
+      {0.0157, 0, {0.0, 0.2452, 0.3742, 0.2798, 0.1008}},
+      {0.0313, 1, {0.0, 0.2449, 0.5592, 0.1960}}};
+  PowerParams power;
+  LoadParams load;
+  JointParams joints;
+  SpinParams spin;
+  LoadDistributionParams load_distribution;
+  FilterParams filters;
+  SensorParams sensors;
+  SafetyParams safety;
+};
+
+}  // namespace marsokhod
