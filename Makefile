@@ -1,6 +1,7 @@
 # marsokhod — the two commands: `make test` and (once the simulator lands) `make run`.
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
+FUZZ_SECONDS ?= 60
 CMAKE_FLAGS ?= -DMARSOKHOD_WERROR=ON
 
 .PHONY: all deps configure build test bench fuzz run clean
@@ -23,7 +24,7 @@ bench: build
 	@bash scripts/run-benchmarks.sh $(BUILD_DIR)
 
 fuzz: deps
-	@bash scripts/fuzz.sh
+	@FUZZ_SECONDS=$(FUZZ_SECONDS) bash scripts/fuzz.sh
 
 run:
 	@echo "make run: the simulated rover arrives with the 'marsokhod run' issue; not yet available." >&2
