@@ -1,0 +1,183 @@
+#include "config/config_reader.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+namespace marsokhod::config {
+namespace {
+
+std::string show(const toml::node& node) {
+  std::ostringstream out;
+  if (const auto* s = node.as_string()) {
+    out << '"' << s->get() << '"';
+  } else if (node.is_table()) {
+    out << "a table";
+  } else if (node.is_array()) {
+    out << "an array";
+  } else {
+    node.visit([&out](const auto& v) { out << v; });
+  }
+  return out.str();
+}
+
+std::string show_range(double min, double max) {
+  std::ostringstream out;
+  out << '[' << min << ", " << max << ']';
+  return out.str();
+}
+
+}  // namespace
+
+ConfigReader::ConfigReader(const toml::table* table, std::string path,
+                           std::vector<std::string>& problems)
+    : table_(table), path_(std::move(path)), problems_(&problems) {}
+
+std::string ConfigReader::key_name(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+std::string ConfigReader::where(const toml::node& node) const {
+  const auto& begin = node.source().begin;
+  if (begin.line == 0) return {};
+  return " (line " + std::to_string(begin.line) + ")";
+}
+
+void ConfigReader::problem(std::string message) { problems_->push_back(std::move(message)); }
+
+const toml::node* ConfigReader::find(std::string_view key, std::string_view expected) {
+  used_.emplace(key);
+  if (table_ == nullptr) return nullptr;  // the enclosing table is missing: already reported
+  const toml::node* node = table_->get(key);
+  if (node == nullptr) {
+    problem(key_name(key) + ": missing; expected " + std::string(expected));
+  }
+  return node;
+}
+
+double ConfigReader::number(std::string_view key, double min, double max) {
+  const std::string expected = "a number in " + show_range(min, max);
+  const toml::node* node = find(key, expected);
+  if (node == nullptr) return min;
+  if (!node->is_number()) {
+    problem(key_name(key) + ": " + show(*node) + " is not a number; expected " + expected +
+            where(*node));
+    return min;
+  }
+  const double value = node->value<double>().value_or(min);
+  if (!std::isfinite(value) || value < min || value > max) {
+    problem(key_name(key) + ": " + show(*node) + " is out of range; allowed " +
+            show_range(min, max) + where(*node));
+    return min;
+  }
+  return value;
+}
+
+int ConfigReader::integer(std::string_view key, int min, int max) {
+  const std::string expected = "an integer in " + show_range(min, max);
+  const toml::node* node = find(key, expected);
+  if (node == nullptr) return min;
+  if (!node->is_integer()) {
+    problem(key_name(key) + ": " + show(*node) + " is not an integer; expected " + expected +
+            where(*node));
+    return min;
+  }
+  const std::int64_t value = node->value<std::int64_t>().value_or(min);
+  if (value < min || value > max) {
+    problem(key_name(key) + ": " + show(*node) + " is out of range; allowed " +
+            show_range(min, max) + where(*node));
+    return min;
+  }
+  return static_cast<int>(value);
+}
+
+std::string ConfigReader::choice(std::string_view key,
+                                 std::initializer_list<std::string_view> allowed) {
+  std::string options;
+  for (std::string_view a : allowed) options += (options.empty() ? "\"" : ", \"") + std::string(a) + "\"";
+  const toml::node* node = find(key, "one of " + options);
+  const std::string fallback(*allowed.begin());
+  if (node == nullptr) return fallback;
+  const auto* text = node->as_string();
+  if (text != nullptr) {
+    for (std::string_view a : allowed) {
+      if (text->get() == a) return text->get();
+    }
+  }
+  problem(key_name(key) + ": " + show(*node) + " is not allowed; expected one of " + options +
+          where(*node));
+  return fallback;
+}
+
+std::vector<double> ConfigReader::numbers(std::string_view key, double min, double max,
+                                          std::size_t min_count, std::size_t max_count) {
+  std::ostringstream expected;
+  expected << "an array of " << min_count;
+  if (max_count != min_count) expected << " to " << max_count;
+  expected << " numbers in " << show_range(min, max);
+  const toml::node* node = find(key, expected.str());
+  if (node == nullptr) return {};
+  const toml::array* array = node->as_array();
+  if (array == nullptr || array->size() < min_count || array->size() > max_count) {
+    const std::string got =
+        array == nullptr ? show(*node) : "an array of " + std::to_string(array->size());
+    problem(key_name(key) + ": " + got + " given; expected " + expected.str() + where(*node));
+    return {};
+  }
+  std::vector<double> out;
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const toml::node& item = (*array)[i];
+    const std::string name = key_name(key) + "[" + std::to_string(i) + "]";
+    const double value = item.value<double>().value_or(std::nan(""));
+    if (!item.is_number()) {
+      problem(name + ": " + show(item) + " is not a number" + where(item));
+    } else if (!std::isfinite(value) || value < min || value > max) {
+      problem(name + ": " + show(item) + " is out of range; allowed " + show_range(min, max) +
+              where(item));
+    }
+    out.push_back(value);
+  }
+  return out;
+}
+
+ConfigReader ConfigReader::table(std::string_view key) {
+  const toml::node* node = find(key, "a table [" + key_name(key) + "]");
+  const toml::table* sub = node == nullptr ? nullptr : node->as_table();
+  if (node != nullptr && sub == nullptr) {
+    problem(key_name(key) + ": " + show(*node) + " given; expected a table" + where(*node));
+  }
+  return ConfigReader(sub, key_name(key), *problems_);
+}
+
+std::vector<ConfigReader> ConfigReader::tables(std::string_view key, std::size_t min_count) {
+  const toml::node* node = find(key, "an array of tables [[" + key_name(key) + "]]");
+  std::vector<ConfigReader> out;
+  if (node == nullptr) return out;
+  const toml::array* array = node->as_array();
+  if (array == nullptr || !array->is_array_of_tables()) {
+    problem(key_name(key) + ": expected an array of tables [[" + key_name(key) + "]]" +
+            where(*node));
+    return out;
+  }
+  if (array->size() < min_count) {
+    problem(key_name(key) + ": " + std::to_string(array->size()) + " entries; at least " +
+            std::to_string(min_count) + " required" + where(*node));
+  }
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    out.emplace_back((*array)[i].as_table(), key_name(key) + "[" + std::to_string(i) + "]",
+                     *problems_);
+  }
+  return out;
+}
+
+void ConfigReader::reject_unknown_keys() {
+  if (table_ == nullptr) return;
+  for (const auto& [key, node] : *table_) {
+    if (used_.find(key.str()) == used_.end()) {
+      problem(key_name(key.str()) + ": unknown key" + where(node) +
+              "; check its spelling against config/marsokhod.toml");
+    }
+  }
+}
+
+}  // namespace marsokhod::config
