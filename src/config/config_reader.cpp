@@ -91,6 +91,17 @@ int ConfigReader::integer(std::string_view key, int min, int max) {
   return static_cast<int>(value);
 }
 
+bool ConfigReader::boolean(std::string_view key) {
+  const toml::node* node = find(key, "true or false");
+  if (node == nullptr) return false;
+  if (!node->is_boolean()) {
+    problem(key_name(key) + ": " + show(*node) + " is not a boolean; expected true or false" +
+            where(*node));
+    return false;
+  }
+  return node->value<bool>().value_or(false);
+}
+
 std::string ConfigReader::choice(std::string_view key,
                                  std::initializer_list<std::string_view> allowed) {
   std::string options;

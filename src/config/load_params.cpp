@@ -156,10 +156,47 @@ SensorParams read_sensors(ConfigReader r) {
   return s;
 }
 
+OperatorParams read_operator(ConfigReader r) {
+  OperatorParams o;
+  o.dead_zone = r.number("dead_zone", 0.0, 0.9);
+  o.max_drive_speed_radps = r.number("max_drive_speed_radps", 0.0, 100.0);
+  o.max_spin_speed_radps = r.number("max_spin_speed_radps", 0.0, 100.0);
+  o.max_trench_speed_radps = r.number("max_trench_speed_radps", 0.0, 100.0);
+  o.joint_button_speed_radps = r.number("joint_button_speed_radps", 0.0, 100.0);
+  o.calibration_duty = r.number("calibration_duty", 0.0, 0.5);
+  o.drive_rate_per_s = r.number("drive_rate_per_s", 0.01, 100.0);
+  r.reject_unknown_keys();
+  return o;
+}
+
+GaitParams read_gaits(ConfigReader r) {
+  GaitParams g;
+  g.extended_rad = r.number("extended_rad", 0.0, kPi);
+  g.max_joint_speed_fraction = r.number("max_joint_speed_fraction", 0.01, 1.0);
+  r.reject_unknown_keys();
+  return g;
+}
+
+BehaviourParams read_behaviours(ConfigReader r) {
+  BehaviourParams b;
+  b.power_management = r.boolean("power_management");
+  b.slant_response = r.boolean("slant_response");
+  b.contract_on_turn = r.boolean("contract_on_turn");
+  b.axle_placement = r.boolean("axle_placement");
+  b.axle_placement_load_radps = r.number("axle_placement_load_radps", 0.0, 100.0);
+  b.axle_placement_speed_radps = r.number("axle_placement_speed_radps", 0.0, 100.0);
+  b.axle_placement_rate_per_s = r.number("axle_placement_rate_per_s", 0.0, 1000.0);
+  r.reject_unknown_keys();
+  return b;
+}
+
 SafetyParams read_safety(ConfigReader r) {
   SafetyParams s;
   s.operator_timeout_s = r.number("operator_timeout_s", 0.05, 10.0);
   s.dead_man_dog = r.integer("dead_man_dog", 0, 255);
+  s.max_duty_step = r.number("max_duty_step", 0.001, 2.0);
+  s.direction_change_duty = r.number("direction_change_duty", 0.0, 0.2);
+  s.missed_responses_limit = r.integer("missed_responses_limit", 1, 1000);
   r.reject_unknown_keys();
   return s;
 }
@@ -196,6 +233,9 @@ Params parse_params(std::string_view toml_text, const std::string& source) {
   p.load_distribution = read_load_distribution(r.table("load_distribution"));
   p.filters = read_filters(r.table("filters"));
   p.sensors = read_sensors(r.table("sensors"));
+  p.operator_input = read_operator(r.table("operator"));
+  p.gaits = read_gaits(r.table("gaits"));
+  p.behaviours = read_behaviours(r.table("behaviours"));
   p.safety = read_safety(r.table("safety"));
   r.reject_unknown_keys();
   if (problems.empty()) problems = consistency_problems(p);

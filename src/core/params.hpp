@@ -144,10 +144,41 @@ struct SensorParams {
   LinearConversion supply{0.06768, -41.0823};    // U, Procedure 3.5
 };
 
-// Field Experiment 6.7 and chapter 3.3's dead man's switch.
+// Remark 5.7: what full deflection of the gamepad's sticks and buttons asks for.
+struct OperatorParams {
+  double dead_zone = 0.1;                  // |axis| below this reads as 0 (then rescaled to 0..1)
+  double max_drive_speed_radps = 2.25;     // v1ᵈ at full deflection (chapter 5: 0.27 m/s)
+  double max_spin_speed_radps = 1.5;       // v2ᵈ at full deflection
+  double max_trench_speed_radps = 1.0;     // v4ᵈ at full deflection
+  double joint_button_speed_radps = 0.5;   // v6ᵈ, v7ᵈ while an extend/contract button is held
+  double calibration_duty = 0.08;          // Procedure 4.3: |d6|, |d7| in calibration mode
+  double drive_rate_per_s = 2.0;           // μ of (4.14) ramping v1…v4 toward their targets
+};
+
+// Chapter 5.3 wheel walking (SPEC.md's gait tables).
+struct GaitParams {
+  double extended_rad = 2.55;              // E: |p6| = |p7| = 2.55
+  double max_joint_speed_fraction = 0.5;   // C of (4.15) at full right stick, as a fraction of w
+};
+
+// Chapter 6: each behaviour can be switched off here and at run time.
+struct BehaviourParams {
+  bool power_management = true;            // (6.3)
+  bool slant_response = true;              // 6.2.1
+  bool contract_on_turn = true;            // 6.2.2
+  bool axle_placement = true;              // 6.2.3
+  double axle_placement_load_radps = 0.5;  // |l6|, |l7| above this: the joint is blocked
+  double axle_placement_speed_radps = 0.1; // joint slower than this: switch ρ → 1 − ρ at once
+  double axle_placement_rate_per_s = 1.0;  // faster: move ρ toward 1 − ρ at this rate
+};
+
+// Chapter 3.2's rules for duty cycles, Field Experiment 6.7 and chapter 3.3's dead man's switch.
 struct SafetyParams {
-  double operator_timeout_s = 0.5;
-  int dead_man_dog = 4;  // µ8 stops the motors 0.2621·dog s after the last 0x80 request
+  double operator_timeout_s = 0.5;         // no operator input for this long ⇒ controlled stop
+  int dead_man_dog = 4;                    // µ8 stops the motors 0.2621·dog s after the last 0x80
+  double max_duty_step = 0.05;             // |d^k − d^(k−1)| per cycle ("must not differ much")
+  double direction_change_duty = 0.02;     // drv may toggle only while |d| ≤ this ("pwm ≈ 0")
+  int missed_responses_limit = 3;          // consecutive missing responses ⇒ fault, rover stopped
 };
 
 struct Params {
@@ -171,6 +202,9 @@ struct Params {
   LoadDistributionParams load_distribution;
   FilterParams filters;
   SensorParams sensors;
+  OperatorParams operator_input;
+  GaitParams gaits;
+  BehaviourParams behaviours;
   SafetyParams safety;
 };
 

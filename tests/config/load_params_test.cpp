@@ -94,6 +94,25 @@ TEST(LoadParams, ShippedFileMatchesTheThesisDefaults) {
   EXPECT_EQ(p.sensors.tilt_rear.offset, 2.74);  // SPEC.md: the table's +2.74, not −2.74
   EXPECT_EQ(p.sensors.supply.gain, 0.06768);
   EXPECT_EQ(p.safety.operator_timeout_s, 0.5);
+  EXPECT_EQ(p.safety.dead_man_dog, d.safety.dead_man_dog);
+  EXPECT_EQ(p.safety.max_duty_step, d.safety.max_duty_step);
+  EXPECT_EQ(p.safety.direction_change_duty, d.safety.direction_change_duty);
+  EXPECT_EQ(p.safety.missed_responses_limit, d.safety.missed_responses_limit);
+  EXPECT_EQ(p.operator_input.dead_zone, d.operator_input.dead_zone);
+  EXPECT_EQ(p.operator_input.max_drive_speed_radps, d.operator_input.max_drive_speed_radps);
+  EXPECT_EQ(p.operator_input.max_spin_speed_radps, d.operator_input.max_spin_speed_radps);
+  EXPECT_EQ(p.operator_input.calibration_duty, 0.08);  // Procedure 4.3
+  EXPECT_EQ(p.gaits.extended_rad, 2.55);
+  EXPECT_EQ(p.gaits.max_joint_speed_fraction, d.gaits.max_joint_speed_fraction);
+  EXPECT_EQ(p.behaviours.power_management, d.behaviours.power_management);
+  EXPECT_EQ(p.behaviours.axle_placement_load_radps, d.behaviours.axle_placement_load_radps);
+}
+
+TEST(LoadParams, BooleanMustBeABoolean) {
+  const std::string e = problem_of(with_value("[behaviours]", "slant_response", "1"));
+  EXPECT_NE(e.find("behaviours.slant_response: 1 is not a boolean; expected true or false"),
+            std::string::npos)
+      << e;
 }
 
 TEST(LoadParams, JointBoundsMatchTheGeometry) {
