@@ -1,0 +1,95 @@
+#include "app/cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <istream>
+#include <ostream>
+
+#include "app/decode_command.hpp"
+#include "config/load_params.hpp"
+
+namespace marsokhod::app {
+namespace {
+
+constexpr int kUsageError = 2;
+
+struct DecodeArgs {
+  std::string file;
+  bool json = false;
+};
+
+int run_decode(const DecodeArgs& args, const Params& params, std::istream& in, std::ostream& out,
+               std::ostream& err) {
+  const DecodeOptions options{args.json};
+  if (args.file == "-") return decode_trace(in, "<stdin>", params, options, out, err);
+  std::ifstream file(args.file);
+  if (!file) {
+    err << "marsokhod decode: cannot open '" << args.file << "': no such file or not readable\n";
+    return kUsageError;
+  }
+  return decode_trace(file, args.file, params, options, out, err);
+}
+
+}  // namespace
+
+std::optional<std::filesystem::path> find_config(const std::string& given) {
+  namespace fs = std::filesystem;
+  if (!given.empty()) return fs::path(given);
+  if (const char* env = std::getenv("MARSOKHOD_CONFIG"); env != nullptr && *env != '\0') {
+    return fs::path(env);
+  }
+  std::error_code ec;
+  if (fs::exists("config/marsokhod.toml", ec)) return fs::path("config/marsokhod.toml");
+  const fs::path source_tree = fs::path(MARSOKHOD_SOURCE_DIR) / "config" / "marsokhod.toml";
+  if (fs::exists(source_tree, ec)) return source_tree;
+  return std::nullopt;
+}
+
+int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& out,
+            std::ostream& err) {
+  CLI::App cli{"marsokhod: control stack and simulator for the Marsokhod rover", "marsokhod"};
+  cli.require_subcommand(1);
+  std::string config_file;
+  cli.add_option("--config", config_file,
+                 "configuration file (default: $MARSOKHOD_CONFIG, ./config/marsokhod.toml)")
+      ->check(CLI::ExistingFile);
+
+  DecodeArgs decode;
+  CLI::App* decode_cmd =
+      cli.add_subcommand("decode", "decode a CAN trace in candump log format, one frame a line");
+  decode_cmd->add_option("FILE", decode.file, "candump log file, or - for standard input")
+      ->required();
+  decode_cmd->add_flag("--json", decode.json, "print one JSON object a line");
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    out << cli.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp& e) {
+    out << cli.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    err << "marsokhod: " << e.what() << " (see marsokhod --help)\n";
+    return kUsageError;
+  }
+
+  const auto config_path = find_config(config_file);
+  if (!config_path) {
+    err << "marsokhod: no configuration file: pass --config FILE or set MARSOKHOD_CONFIG\n";
+    return kUsageError;
+  }
+  Params params;
+  try {
+    params = config::load_params(*config_path);
+  } catch (const config::ConfigError& e) {
+    err << "marsokhod: " << e.what() << "\n";
+    return kUsageError;
+  }
+  if (decode_cmd->parsed()) return run_decode(decode, params, in, out, err);
+  return kUsageError;
+}
+
+}  // namespace marsokhod::app
