@@ -1,0 +1,63 @@
+#include "core/behaviour/power_management.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/behaviour/input_checks.hpp"
+
+namespace marsokhod::behaviour {
+namespace {
+
+void require_power_params(const PowerParams& power, const char* function) {
+  detail::require_positive(power.duty_drop_v, function, "power.duty_drop_v");
+  detail::require_non_negative(power.load_drop_v_s2_per_rad2, function,
+                               "power.load_drop_v_s2_per_rad2");
+  detail::require_non_negative(power.max_drop_v, function, "power.max_drop_v");
+}
+
+}  // namespace
+
+double equal_duty_bound(double load_square_sum_rad2_per_s2, std::size_t motor_count,
+                        const PowerParams& power) {
+  constexpr const char* kFunction = "equal_duty_bound";
+  require_power_params(power, kFunction);
+  detail::require_non_negative(load_square_sum_rad2_per_s2, kFunction,
+                               "load_square_sum_rad2_per_s2");
+  if (motor_count == 0) {
+    throw std::invalid_argument(
+        "equal_duty_bound: motor_count = 0; pass the number of motors sharing the budget "
+        "(8 as printed in (6.1), 6 for Example 6.1)");
+  }
+  return (power.max_drop_v - power.load_drop_v_s2_per_rad2 * load_square_sum_rad2_per_s2) /
+         (static_cast<double>(motor_count) * power.duty_drop_v);
+}
+
+double next_duty_bound(const MotorVector& duties, const MotorVector& loads_radps,
+                       const PowerParams& power, const BehaviourSwitches& switches) {
+  constexpr const char* kFunction = "next_duty_bound";
+  require_power_params(power, kFunction);
+  double largest_duty = 0.0;
+  double duty_sum = 0.0;
+  double load_square_sum_rad2_per_s2 = 0.0;
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    detail::require_within(duties[i], -1.0, 1.0, kFunction, detail::argument_name("duties", i));
+    detail::require_finite(loads_radps[i], kFunction, detail::argument_name("loads_radps", i));
+    largest_duty = std::max(largest_duty, std::abs(duties[i]));
+    duty_sum += std::abs(duties[i]);
+    load_square_sum_rad2_per_s2 += loads_radps[i] * loads_radps[i];
+  }
+  if (!switches.power_management || duty_sum == 0.0) {
+    return 1.0;
+  }
+  // Loads so large that Σ l² overflows make the budget −inf, which the floor catches like any
+  // other overspent budget; Ξ = 0 ignores the loads (and must not turn 0 · inf into NaN).
+  const double load_drop_v = power.load_drop_v_s2_per_rad2 == 0.0
+                                 ? 0.0
+                                 : power.load_drop_v_s2_per_rad2 * load_square_sum_rad2_per_s2;
+  const double budget_v = power.max_drop_v - load_drop_v;
+  const double bound = largest_duty / duty_sum * budget_v / power.duty_drop_v;
+  return std::clamp(bound, kMinimumDutyBound, 1.0);
+}
+
+}  // namespace marsokhod::behaviour
