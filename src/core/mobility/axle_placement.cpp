@@ -1,0 +1,99 @@
+#include "core/mobility/axle_placement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+
+#include "core/control/input_checks.hpp"
+#include "core/mobility/lever_geometry.hpp"
+
+namespace marsokhod::mobility {
+
+DrivingIntent driving_intent(DrivingIntent previous, double drive_target_radps) {
+  control::require_finite(drive_target_radps, "driving_intent", "drive_target_radps (v1ᵈ)");
+  if (drive_target_radps > 0.0) {
+    return DrivingIntent::kForward;
+  }
+  if (drive_target_radps < 0.0) {
+    return DrivingIntent::kBackward;
+  }
+  return previous;
+}
+
+double intent_value(DrivingIntent intent) { return intent == DrivingIntent::kBackward ? 1.0 : 0.0; }
+
+double front_axle_factor(DrivingIntent intent, ClearanceIntent front_clearance) {
+  const double varrho = intent_value(intent);
+  return front_clearance == ClearanceIntent::kIncrease ? 1.0 - varrho : varrho;
+}
+
+double rear_axle_factor(DrivingIntent intent, ClearanceIntent rear_clearance) {
+  const double varrho = intent_value(intent);
+  return rear_clearance == ClearanceIntent::kIncrease ? varrho : 1.0 - varrho;
+}
+
+ClearanceIntent front_clearance_intent(double front_joint_velocity_radps) {
+  control::require_finite(front_joint_velocity_radps, "front_clearance_intent",
+                          "front_joint_velocity_radps (w6)");
+  return front_joint_velocity_radps < 0.0 ? ClearanceIntent::kIncrease : ClearanceIntent::kDecrease;
+}
+
+ClearanceIntent rear_clearance_intent(double rear_joint_velocity_radps) {
+  control::require_finite(rear_joint_velocity_radps, "rear_clearance_intent",
+                          "rear_joint_velocity_radps (w7)");
+  return rear_joint_velocity_radps > 0.0 ? ClearanceIntent::kIncrease : ClearanceIntent::kDecrease;
+}
+
+AxleDistanceRates axle_distance_rates(double front_joint_position_rad,
+                                      double rear_joint_position_rad,
+                                      double front_joint_velocity_radps,
+                                      double rear_joint_velocity_radps,
+                                      const GeometryParams& geometry) {
+  control::require_finite(front_joint_velocity_radps, "axle_distance_rates",
+                          "front_joint_velocity_radps (w6)");
+  control::require_finite(rear_joint_velocity_radps, "axle_distance_rates",
+                          "rear_joint_velocity_radps (w7)");
+  const double front_rate =
+      lever_rates(front_joint_bending_rad(front_joint_position_rad), geometry).clearance_m_per_rad;
+  const double rear_rate =
+      lever_rates(rear_joint_bending_rad(rear_joint_position_rad), geometry).clearance_m_per_rad;
+  return {front_rate * front_joint_velocity_radps, rear_rate * rear_joint_velocity_radps};
+}
+
+AxleFactors two_joint_axle_factors(const AxleDistanceRates& rates, double epsilon) {
+  constexpr std::string_view kWhere = "two_joint_axle_factors";
+  control::require_finite(rates.front_mps, kWhere, "rates.front_mps (yf)");
+  control::require_finite(rates.rear_mps, kWhere, "rates.rear_mps (yr)");
+  control::require_finite(epsilon, kWhere, "epsilon (ε)");
+  if (epsilon < 0.0 || epsilon > 1.0) {
+    std::ostringstream message;
+    message << kWhere << ": epsilon (ε, the desired ρf) must lie in [0, 1], got " << epsilon;
+    throw std::invalid_argument(message.str());
+  }
+  // The formula is homogeneous of degree 0 in (yf, yr): normalising by the larger rate avoids
+  // underflow of yf² + yr² for tiny rates without changing the result.
+  const double scale = std::max(std::abs(rates.front_mps), std::abs(rates.rear_mps));
+  if (scale == 0.0) {
+    return {epsilon, 1.0 - epsilon};
+  }
+  const double f = rates.front_mps / scale;
+  const double r = rates.rear_mps / scale;
+  const double denominator = 2.0 * (f * f + r * r);
+  return {(f * f + (2.0 * epsilon - 1.0) * f * r + 2.0 * epsilon * r * r) / denominator,
+          (2.0 * (1.0 - epsilon) * f * f + (1.0 - 2.0 * epsilon) * f * r + r * r) / denominator};
+}
+
+ExteriorAxleVelocities exterior_axle_velocities(const AxleDistanceRates& rates,
+                                                const AxleFactors& factors) {
+  constexpr std::string_view kWhere = "exterior_axle_velocities";
+  control::require_finite(rates.front_mps, kWhere, "rates.front_mps (yf)");
+  control::require_finite(rates.rear_mps, kWhere, "rates.rear_mps (yr)");
+  control::require_finite(factors.front, kWhere, "factors.front (ρf)");
+  control::require_finite(factors.rear, kWhere, "factors.rear (ρr)");
+  const double q = factors.front * rates.front_mps + factors.rear * rates.rear_mps;
+  return {rates.rear_mps - q, rates.front_mps - q};
+}
+
+}  // namespace marsokhod::mobility

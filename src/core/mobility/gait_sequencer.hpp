@@ -1,0 +1,100 @@
+// Runs one wheel-walking gait (gait_table.hpp) cycle by cycle: joint targets reached with (4.15),
+// the next state once both joints are there and stopped, ρf and ρr for (5.1)/(5.2).
+//
+// Per cycle, with the gait speed s ∈ [−1, 1] (the right stick, Remark 5.7):
+// - The gait runs through the segment (from, to) of its cycle: s > 0 approaches `to`, s < 0
+//   approaches `from` (the cycle backward: the same transition undone). A state is reached when
+//   both joints are within JointParams::target_tolerance_rad (0.05) of its targets and
+//   |w| ≤ kStoppedSpeedRadps (0.02 rad/s, about 6 encoder counts per 64 Hz cycle); then the
+//   segment moves one state on in the direction of s. At most one state per cycle.
+// - The joint controls: (4.15) toward (v_d, p_d) = (0, target) with μ = control_rate_per_s and
+//   C = |s|·max_joint_speed_fraction·w, then clipped by (4.16)'s bound terms for (5.3) at the
+//   full C = max_joint_speed_fraction·w. The clip keeps the joints inside (5.3) even when |s| drops
+//   while a joint moves faster than the new C could brake.
+// - s = 0 holds: no state change, and (4.14) brings both joints to rest (v_d = 0, full C, same
+//   clip). The targets stay.
+// - ρf, ρr follow the rule of the segment's `to` state in both directions (running a transition
+//   backward undoes it with the same axle placement); the ε-formula uses the measured w6, w7.
+// - The driving intent ϱ (Remark 5.5) is latched when the gait starts and re-read at each state
+//   change: backward mirrors the table (gait_table.hpp). Held joints keep the (5.3)-clamped
+//   position measured then.
+// - Selecting a different gait restarts at state 0 (segment (last, 0)); Gait::kNone stops the
+//   sequencer (output.active = false, everything else zero).
+// Every target lies in (5.3). Inputs are measured values; time enters only as the period h.
+#pragma once
+
+#include <cstddef>
+
+#include "core/control/control_params.hpp"
+#include "core/control/motion_model.hpp"
+#include "core/mobility/axle_placement.hpp"
+#include "core/mobility/gait_table.hpp"
+#include "core/mobility/lever_geometry.hpp"
+#include "core/params.hpp"
+
+namespace marsokhod::mobility {
+
+struct GaitInput {
+  Gait gait = Gait::kNone;
+  double gait_speed = 0.0;                         // s ∈ [−1, 1]
+  DrivingIntent intent = DrivingIntent::kForward;  // ϱ
+  control::MotionState front_joint;                // measured p6 [rad], w6 [rad/s]
+  control::MotionState rear_joint;                 // measured p7 [rad], w7 [rad/s]
+  double period_s = 0.0;                           // h
+};
+
+struct GaitOutput {
+  bool active = false;
+  std::size_t state_index = 0;       // the state being approached (or held at s = 0)
+  double front_target_rad = 0.0;     // p6ᵈ
+  double rear_target_rad = 0.0;      // p7ᵈ
+  double front_control_radps = 0.0;  // c6 of (4.15)
+  double rear_control_radps = 0.0;   // c7
+  // v6, v7 for (5.4): the velocity (4.13) reaches after one period under c from the measured
+  // state, i.e. the continuous ŵ6(t), ŵ7(t) of (4.11) that chapter 4.4 assigns to the motor.
+  double front_command_radps = 0.0;
+  double rear_command_radps = 0.0;
+  AxleFactors factors;  // ρf, ρr
+};
+
+class GaitSequencer {
+ public:
+  static constexpr double kStoppedSpeedRadps = 0.02;
+
+  // Validates the parameters (std::invalid_argument naming the field).
+  GaitSequencer(const GeometryParams& geometry, const JointParams& joints, const GaitParams& gait,
+                const MotorParams& motors);
+
+  // One cycle. Throws std::invalid_argument naming the input if a number is not finite, |s| > 1
+  // or h ≤ 0.
+  GaitOutput update(const GaitInput& input);
+
+  Gait gait() const { return gait_; }
+
+ private:
+  void start(const GaitInput& input);
+  void latch_held_positions(const GaitInput& input);
+  bool reached(std::size_t index, const GaitInput& input) const;
+  void advance(bool forward, DrivingIntent intent, const GaitInput& input);
+  AxleFactors segment_factors(const GaitInput& input) const;
+  double joint_control(const control::MotionState& state, double target_rad, double gait_speed,
+                       const JointBounds& bounds, const control::ControlParams& full) const;
+
+  GeometryParams geometry_;
+  JointParams joints_;
+  JointBounds front_bounds_;
+  JointBounds rear_bounds_;
+  StrokePositions front_strokes_;
+  StrokePositions rear_strokes_;
+  double max_joint_speed_radps_ = 0.0;  // C at |s| = 1
+
+  Gait gait_ = Gait::kNone;
+  DrivingIntent intent_ = DrivingIntent::kForward;
+  std::size_t from_ = 0;
+  std::size_t to_ = 0;
+  bool forward_ = true;  // the direction of the last s ≠ 0
+  double held_front_rad_ = 0.0;
+  double held_rear_rad_ = 0.0;
+};
+
+}  // namespace marsokhod::mobility
