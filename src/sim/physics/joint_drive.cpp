@@ -1,0 +1,55 @@
+#include "sim/physics/joint_drive.hpp"
+
+#include <algorithm>
+
+namespace marsokhod::sim {
+namespace {
+
+// The simulated gap's ends are soft constraints: a shaft resting on an end may sit this much
+// short of it and still bears on it.
+constexpr double kGapEndToleranceRad = 1e-6;
+
+}  // namespace
+
+double backlash_position(double shaft_rad, double joint_rad, double backlash_rad) {
+  if (shaft_rad < joint_rad) return shaft_rad;
+  if (shaft_rad > joint_rad + backlash_rad) return shaft_rad - backlash_rad;
+  return joint_rad;
+}
+
+JointDrive::JointDrive(double initial_joint_rad, double backlash_rad)
+    : backlash_rad_(backlash_rad), held_angle_rad_(initial_joint_rad) {}
+
+bool JointDrive::update(double shaft_rad, double joint_rad, double no_load_speed_radps) {
+  const JointMode before = mode_;
+  const double gap_rad = shaft_rad - joint_rad;
+  switch (mode_) {
+    case JointMode::kPushingUp:
+      if (no_load_speed_radps > 0.0) {
+        held_angle_rad_ = std::max(held_angle_rad_, joint_rad);
+        return false;
+      }
+      break;
+    case JointMode::kPushingDown:
+      if (no_load_speed_radps < 0.0) {
+        held_angle_rad_ = std::min(held_angle_rad_, joint_rad);
+        return false;
+      }
+      break;
+    case JointMode::kLocked:
+      break;
+  }
+  // Locked, or the command stopped or reversed: engage the lock where the joint is, unless the
+  // shaft is already bearing on the end it is commanded toward.
+  if (mode_ != JointMode::kLocked) held_angle_rad_ = joint_rad;
+  mode_ = JointMode::kLocked;
+  if (no_load_speed_radps > 0.0 && gap_rad >= backlash_rad_ - kGapEndToleranceRad) {
+    mode_ = JointMode::kPushingUp;
+  } else if (no_load_speed_radps < 0.0 && gap_rad <= kGapEndToleranceRad) {
+    mode_ = JointMode::kPushingDown;
+  }
+  if (mode_ != JointMode::kLocked) held_angle_rad_ = joint_rad;
+  return mode_ != before;
+}
+
+}  // namespace marsokhod::sim

@@ -1,0 +1,247 @@
+#include "sim/physics/rover_physics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "sim/physics/chassis_geometry.hpp"
+#include "sim/physics/rover_mjcf.hpp"
+#include "sim/physics/rover_physics_impl.hpp"
+
+namespace marsokhod::sim {
+namespace {
+
+// The rover starts this far above the ground and settles onto it in the first steps.
+constexpr double kStartClearanceM = 0.005;
+constexpr double kRayStartHeightM = 1000.0;
+
+constexpr std::array<std::size_t, 2> kJointMotors{kFrontJoint, kRearJoint};
+
+JointDrive joint_drive_for(const Params& params, std::size_t motor) {
+  return JointDrive(params.motors.initial_position_rad[motor], params.motors.backlash_rad[motor]);
+}
+
+void check_initial_joint(const Params& params, std::size_t motor) {
+  const BendRange range = mechanical_bend_range(params.geometry);
+  const double bend_rad = motor == kFrontJoint ? -params.motors.initial_position_rad[motor]
+                                               : params.motors.initial_position_rad[motor];
+  if (!(bend_rad >= range.min_rad && bend_rad <= range.max_rad) ||
+      !(params.motors.backlash_rad[motor] >= 0.0)) {
+    throw std::invalid_argument(
+        std::string("physics: the initial position of joint ") + kMotorNames[motor] +
+        " lies outside its mechanical range (γ in [" + std::to_string(range.min_rad) + ", " +
+        std::to_string(range.max_rad) + "] rad) or its backlash is negative");
+  }
+}
+
+// The highest ground under the wheels' footprints, by casting rays down onto the terrain only.
+double ground_height_under_wheels_m(const mjModel& model, mjData& data, const RoverModelIds& ids,
+                                    double radius_m) {
+  std::array<mjtByte, mjNGROUP> terrain_only{};
+  terrain_only[0] = 1;
+  double highest_m = -kRayStartHeightM;
+  const mjtNum down[3] = {0.0, 0.0, -1.0};
+  for (int body : ids.wheel_body) {
+    for (double dx : {-0.7 * radius_m, 0.0, 0.7 * radius_m}) {
+      for (double dy : {-kWheelWidthM / 2, 0.0, kWheelWidthM / 2}) {
+        const mjtNum start[3] = {data.xpos[3 * body] + dx, data.xpos[3 * body + 1] + dy,
+                                 kRayStartHeightM};
+        int geom = -1;
+        const mjtNum distance =
+            mj_ray(&model, &data, start, down, terrain_only.data(), 1, -1, &geom);
+        if (distance >= 0.0) highest_m = std::max(highest_m, kRayStartHeightM - distance);
+      }
+    }
+  }
+  return highest_m;
+}
+
+}  // namespace
+
+RoverPhysics::Impl::Impl(const Params& params_in, const TerrainSpec& terrain, double timestep_s)
+    : params(params_in),
+      model(load_rover_model(params_in, terrain, timestep_s)),
+      data(mj_makeData(model.get())),
+      joints{joint_drive_for(params_in, kFrontJoint), joint_drive_for(params_in, kRearJoint)} {
+  if (!data) throw std::runtime_error("physics: MuJoCo could not allocate its data");
+  check_initial_joint(params, kFrontJoint);
+  check_initial_joint(params, kRearJoint);
+  resolve_ids();
+  start_joints();
+  place_on_terrain(terrain);
+  mj_forward(model.get(), data.get());
+}
+
+void RoverPhysics::Impl::resolve_ids() {
+  const mjModel& m = *model;
+  ids.center_body = require_id(m, mjOBJ_BODY, kCenterUnitName);
+  const int free_joint = require_id(m, mjOBJ_JOINT, kCenterUnitName);
+  ids.free_qpos = m.jnt_qposadr[free_joint];
+  ids.free_dof = m.jnt_dofadr[free_joint];
+  for (std::size_t motor = 0; motor < kMotorCount; ++motor) {
+    const bool wheel = motor < kWheelCount;
+    const int shaft =
+        require_id(m, mjOBJ_JOINT, wheel ? wheel_name(motor) : shaft_hinge_name(motor));
+    ids.shaft_qpos[motor] = m.jnt_qposadr[shaft];
+    ids.shaft_dof[motor] = m.jnt_dofadr[shaft];
+    ids.motor_actuator[motor] = require_id(m, mjOBJ_ACTUATOR, motor_actuator_name(motor));
+    if (wheel) {
+      ids.wheel_body[motor] = require_id(m, mjOBJ_BODY, wheel_name(motor));
+      ids.wheel_geom[motor] = require_id(m, mjOBJ_GEOM, wheel_name(motor));
+      ids.wheel_block[motor] = require_id(m, mjOBJ_EQUALITY, wheel_block_name(motor));
+    } else {
+      const std::size_t slot = motor - kFrontJoint;
+      ids.shaft_hinge[slot] = shaft;
+      ids.joint_hinge[slot] = require_id(m, mjOBJ_JOINT, joint_hinge_name(motor));
+      ids.joint_qpos[slot] = m.jnt_qposadr[ids.joint_hinge[slot]];
+      ids.joint_lock[slot] = require_id(m, mjOBJ_EQUALITY, joint_lock_name(motor));
+      ids.joint_coupling[slot] = require_id(m, mjOBJ_EQUALITY, joint_coupling_name(motor));
+    }
+  }
+  ids.tilt_qpos[0] = m.jnt_qposadr[require_id(m, mjOBJ_JOINT, kFrontTiltName)];
+  ids.tilt_qpos[1] = m.jnt_qposadr[require_id(m, mjOBJ_JOINT, kRearTiltName)];
+  ids.accelerometer = m.sensor_adr[require_id(m, mjOBJ_SENSOR, kAccelerometerName)];
+}
+
+// Procedure 4.3: each joint starts locked at the shaft's initial angle, the shaft at the gap's
+// lower end.
+void RoverPhysics::Impl::start_joints() {
+  for (std::size_t slot = 0; slot < 2; ++slot) {
+    for (int side = 0; side < 2; ++side) {
+      joint_stops_rad[slot][side] = model->jnt_range[2 * ids.joint_hinge[slot] + side];
+      shaft_stops_rad[slot][side] = model->jnt_range[2 * ids.shaft_hinge[slot] + side];
+    }
+    data->qpos[ids.joint_qpos[slot]] = joints[slot].held_angle_rad();
+    data->qpos[ids.shaft_qpos[kJointMotors[slot]]] = joints[slot].held_angle_rad();
+    apply_joint_mode(slot);
+  }
+}
+
+// On a slope the rover stands square to the plane; elsewhere level, just above the highest
+// ground under its wheels.
+void RoverPhysics::Impl::place_on_terrain(const TerrainSpec& terrain) {
+  mjtNum* pose = data->qpos + ids.free_qpos;
+  const double height_m = params.geometry.wheel_radius_m + kStartClearanceM;
+  if (terrain.kind == TerrainKind::kSlope) {
+    const double slope_rad = terrain.slope_rad;
+    pose[0] = -std::sin(slope_rad) * height_m;
+    pose[1] = 0.0;
+    pose[2] = std::cos(slope_rad) * height_m;
+    pose[3] = std::cos(-slope_rad / 2);  // nose up: a negative rotation about y
+    pose[4] = 0.0;
+    pose[5] = std::sin(-slope_rad / 2);
+    pose[6] = 0.0;
+    return;
+  }
+  pose[0] = pose[1] = pose[2] = 0.0;
+  pose[3] = 1.0;
+  pose[4] = pose[5] = pose[6] = 0.0;
+  mj_kinematics(model.get(), data.get());
+  pose[2] =
+      ground_height_under_wheels_m(*model, *data, ids, params.geometry.wheel_radius_m) + height_m;
+}
+
+void RoverPhysics::Impl::apply_drive() {
+  mjModel& m = *model;
+  for (std::size_t motor = 0; motor < kMotorCount; ++motor) {
+    const int actuator = ids.motor_actuator[motor];
+    const double gain = powered ? 1.0 / drive.droop_radps_per_nm[motor] : 0.0;
+    m.actuator_gainprm[actuator * mjNGAIN] = gain;
+    m.actuator_biasprm[actuator * mjNBIAS + 2] = -gain;
+    m.actuator_forcerange[actuator * 2] = -drive.stall_torque_nm[motor];
+    m.actuator_forcerange[actuator * 2 + 1] = drive.stall_torque_nm[motor];
+    data->ctrl[actuator] = drive.no_load_speed_radps[motor];
+  }
+}
+
+void RoverPhysics::Impl::update_joint_modes() {
+  for (std::size_t slot = 0; slot < 2; ++slot) {
+    const std::size_t motor = kJointMotors[slot];
+    const double command_radps = powered ? drive.no_load_speed_radps[motor] : 0.0;
+    joints[slot].update(data->qpos[ids.shaft_qpos[motor]], data->qpos[ids.joint_qpos[slot]],
+                        command_radps);
+    apply_joint_mode(slot);
+  }
+}
+
+// The mode as MuJoCo constraints. Locked: the lock holds the joint, the gap's ends bound the shaft.
+// Pushing: the coupling makes p = p̄ + offset, and the joint's stop behind it follows the furthest
+// angle reached (the lock as a ratchet), so no load drives joint or shaft backwards.
+void RoverPhysics::Impl::apply_joint_mode(std::size_t slot) {
+  mjModel& m = *model;
+  const JointDrive& joint = joints[slot];
+  const int joint_qpos = ids.joint_qpos[slot];
+  const int shaft_qpos = ids.shaft_qpos[kJointMotors[slot]];
+  const bool locked = joint.mode() == JointMode::kLocked;
+  m.eq_active[ids.joint_lock[slot]] = locked ? 1 : 0;
+  m.eq_active[ids.joint_coupling[slot]] = locked ? 0 : 1;
+  // MuJoCo's joint equality: q1 − q1₀ = c0 + c1·(q2 − q2₀).
+  m.eq_data[ids.joint_lock[slot] * mjNEQDATA] = joint.held_angle_rad() - m.qpos0[joint_qpos];
+  m.eq_data[ids.joint_coupling[slot] * mjNEQDATA] =
+      joint.coupling_offset_rad() - m.qpos0[joint_qpos] + m.qpos0[shaft_qpos];
+  mjtNum* joint_range = m.jnt_range + 2 * ids.joint_hinge[slot];
+  mjtNum* shaft_range = m.jnt_range + 2 * ids.shaft_hinge[slot];
+  joint_range[0] = joint_stops_rad[slot][0];
+  joint_range[1] = joint_stops_rad[slot][1];
+  shaft_range[0] = shaft_stops_rad[slot][0];
+  shaft_range[1] = shaft_stops_rad[slot][1];
+  if (locked) {
+    shaft_range[0] = joint.held_angle_rad();
+    shaft_range[1] = joint.held_angle_rad() + joint.backlash_rad();
+  } else if (joint.mode() == JointMode::kPushingUp) {
+    joint_range[0] = std::max(joint_range[0], joint.held_angle_rad());
+  } else {
+    joint_range[1] = std::min(joint_range[1], joint.held_angle_rad());
+  }
+}
+
+RoverPhysics::RoverPhysics(const Params& params, const TerrainSpec& terrain, double timestep_s)
+    : impl_(std::make_unique<Impl>(params, terrain, timestep_s)) {}
+
+RoverPhysics::~RoverPhysics() = default;
+
+void RoverPhysics::set_drive(const MotorDrive& drive) {
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    if (!std::isfinite(drive.no_load_speed_radps[i]) || !(drive.droop_radps_per_nm[i] > 0.0) ||
+        !std::isfinite(drive.droop_radps_per_nm[i]) || !(drive.stall_torque_nm[i] >= 0.0) ||
+        !std::isfinite(drive.stall_torque_nm[i])) {
+      throw std::invalid_argument(std::string("physics: the drive of motor ") + kMotorNames[i] +
+                                  " needs a finite speed, droop > 0 and stall torque >= 0");
+    }
+  }
+  impl_->drive = drive;
+  impl_->powered = true;
+  impl_->apply_drive();
+}
+
+void RoverPhysics::step() {
+  impl_->update_joint_modes();
+  mj_step(impl_->model.get(), impl_->data.get());
+}
+
+double RoverPhysics::time_s() const { return impl_->data->time; }
+double RoverPhysics::timestep_s() const { return impl_->model->opt.timestep; }
+
+void RoverPhysics::set_wheel_blocked(std::size_t wheel, bool blocked) {
+  if (wheel >= kWheelCount) throw std::out_of_range("physics: no wheel " + std::to_string(wheel));
+  mjModel& m = *impl_->model;
+  const int constraint = impl_->ids.wheel_block[wheel];
+  const int qpos = impl_->ids.shaft_qpos[wheel];
+  // MuJoCo's joint equality holds q − q0 = polycoef[0]: hold the angle the wheel has now.
+  m.eq_data[constraint * mjNEQDATA] = impl_->data->qpos[qpos] - m.qpos0[qpos];
+  m.eq_active[constraint] = blocked ? 1 : 0;
+}
+
+void RoverPhysics::set_wheel_contact(std::size_t wheel, bool has_contact) {
+  if (wheel >= kWheelCount) throw std::out_of_range("physics: no wheel " + std::to_string(wheel));
+  impl_->model->geom_contype[impl_->ids.wheel_geom[wheel]] = has_contact ? 1 : 0;
+}
+
+int RoverPhysics::mujoco_warning_count() const {
+  int count = 0;
+  for (const mjWarningStat& warning : impl_->data->warning) count += warning.number;
+  return count;
+}
+
+}  // namespace marsokhod::sim

@@ -1,0 +1,47 @@
+// RoverPhysics' state, shared by rover_physics.cpp (building, stepping, faults) and
+// rover_truth.cpp (what tests and the 3-D view read). Not part of the public API.
+#pragma once
+
+#include <array>
+
+#include "sim/physics/joint_drive.hpp"
+#include "sim/physics/mujoco_model.hpp"
+#include "sim/physics/rover_physics.hpp"
+
+namespace marsokhod::sim {
+
+// Addresses of the model's named parts, looked up once. Arrays of two are [0] front, [1] rear.
+struct RoverModelIds {
+  int center_body = -1;
+  int free_qpos = -1;  // x y z, quaternion w x y z
+  int free_dof = -1;   // world linear velocity, then body-frame angular velocity
+  std::array<int, kMotorCount> motor_actuator{};
+  std::array<int, kMotorCount> shaft_qpos{}, shaft_dof{};  // wheels: the wheel's hinge
+  std::array<int, kWheelCount> wheel_body{}, wheel_geom{}, wheel_block{};
+  std::array<int, 2> joint_hinge{}, shaft_hinge{};  // joint ids, for their ranges
+  std::array<int, 2> joint_qpos{}, joint_lock{}, joint_coupling{};
+  std::array<int, 2> tilt_qpos{};
+  int accelerometer = -1;  // sensordata address
+};
+
+struct RoverPhysics::Impl {
+  Impl(const Params& params, const TerrainSpec& terrain, double timestep_s);
+
+  void resolve_ids();
+  void start_joints();
+  void place_on_terrain(const TerrainSpec& terrain);
+  void apply_drive();
+  void update_joint_modes();
+  void apply_joint_mode(std::size_t slot);
+
+  Params params;
+  ModelPtr model;
+  DataPtr data;
+  RoverModelIds ids;
+  MotorDrive drive{};
+  bool powered = false;  // false until the first set_drive: the motors deliver no torque
+  std::array<JointDrive, 2> joints;
+  std::array<std::array<double, 2>, 2> joint_stops_rad{}, shaft_stops_rad{};  // the model's ranges
+};
+
+}  // namespace marsokhod::sim

@@ -1,0 +1,103 @@
+#include "sim/physics/terrain_mjcf.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace marsokhod::sim {
+namespace {
+
+// MuJoCo: condim 3 is sliding friction only, 4 adds torsion, 6 adds rolling resistance.
+XmlWriter::Attributes material_attributes(const Material& material) {
+  int condim = 3;
+  if (material.torsional_friction_m > 0.0) condim = 4;
+  if (material.rolling_friction_m > 0.0) condim = 6;
+  return {{"class", "terrain"},
+          {"condim", std::to_string(condim)},
+          {"friction", xml_numbers(std::array<double, 3>{material.sliding_friction,
+                                                         material.torsional_friction_m,
+                                                         material.rolling_friction_m})}};
+}
+
+void write_plane(XmlWriter& xml, const Material& material, const std::array<double, 3>& pos_m,
+                 double pitch_rad) {
+  XmlWriter::Attributes attributes = material_attributes(material);
+  attributes.emplace_back("name", "ground");
+  attributes.emplace_back("type", "plane");
+  // The plane is infinite for contacts; the size only bounds how it is drawn.
+  attributes.emplace_back("size", "100 100 0.1");
+  attributes.emplace_back("pos", xml_numbers(pos_m));
+  attributes.emplace_back("quat",
+                          xml_numbers(quaternion_from_roll_pitch_yaw({0.0, pitch_rad, 0.0})));
+  xml.leaf("geom", attributes);
+}
+
+void write_obstacle(XmlWriter& xml, const Obstacle& obstacle, std::size_t index) {
+  XmlWriter::Attributes attributes = material_attributes(obstacle.material);
+  attributes.emplace_back("name", "obstacle_" + std::to_string(index));
+  if (obstacle.shape == ObstacleShape::kBox) {
+    attributes.emplace_back("type", "box");
+    const std::array<double, 3> half_m{obstacle.box_size_m[0] / 2, obstacle.box_size_m[1] / 2,
+                                       obstacle.box_size_m[2] / 2};
+    attributes.emplace_back("size", xml_numbers(half_m));
+  } else {
+    attributes.emplace_back("type", "cylinder");
+    attributes.emplace_back("size",
+                            xml_numbers(std::array<double, 2>{obstacle.cylinder_radius_m,
+                                                              obstacle.cylinder_length_m / 2}));
+  }
+  attributes.emplace_back("pos", xml_numbers(obstacle.center_m));
+  attributes.emplace_back("quat",
+                          xml_numbers(quaternion_from_roll_pitch_yaw(obstacle.roll_pitch_yaw_rad)));
+  xml.leaf("geom", attributes);
+}
+
+void write_heightfield(XmlWriter& xml, const TerrainSpec& terrain) {
+  XmlWriter::Attributes attributes = material_attributes(terrain.ground);
+  attributes.emplace_back("name", "heightfield");
+  attributes.emplace_back("type", "hfield");
+  attributes.emplace_back("hfield", kHeightfieldName);
+  xml.leaf("geom", attributes);
+}
+
+}  // namespace
+
+std::array<double, 4> quaternion_from_roll_pitch_yaw(const std::array<double, 3>& rpy_rad) {
+  const double cr = std::cos(rpy_rad[0] / 2), sr = std::sin(rpy_rad[0] / 2);
+  const double cp = std::cos(rpy_rad[1] / 2), sp = std::sin(rpy_rad[1] / 2);
+  const double cy = std::cos(rpy_rad[2] / 2), sy = std::sin(rpy_rad[2] / 2);
+  return {cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy,
+          cr * cp * sy - sr * sp * cy};
+}
+
+void write_terrain_assets(XmlWriter& xml, const TerrainSpec& terrain) {
+  if (terrain.kind != TerrainKind::kHeightfield) return;
+  const Heightfield& field = terrain.heightfield;
+  xml.leaf("hfield",
+           {{"name", kHeightfieldName},
+            {"nrow", std::to_string(field.image.height)},
+            {"ncol", std::to_string(field.image.width)},
+            {"size", xml_numbers(std::array<double, 4>{field.size_x_m / 2, field.size_y_m / 2,
+                                                       field.max_height_m, kHeightfieldBaseM})}});
+}
+
+void write_terrain_geoms(XmlWriter& xml, const TerrainSpec& terrain) {
+  switch (terrain.kind) {
+    case TerrainKind::kFlat:
+    case TerrainKind::kObstacles:
+      write_plane(xml, terrain.ground, {0.0, 0.0, 0.0}, 0.0);
+      break;
+    case TerrainKind::kSlope:
+      // Uphill for +x is a nose-up rotation: negative about y (right-hand rule).
+      write_plane(xml, terrain.ground, {0.0, 0.0, 0.0}, -terrain.slope_rad);
+      break;
+    case TerrainKind::kHeightfield:
+      write_heightfield(xml, terrain);
+      write_plane(xml, terrain.ground, {0.0, 0.0, -kHeightfieldSurroundDropM}, 0.0);
+      break;
+  }
+  for (std::size_t i = 0; i < terrain.obstacles.size(); ++i) {
+    write_obstacle(xml, terrain.obstacles[i], i);
+  }
+}
+
+}  // namespace marsokhod::sim

@@ -1,0 +1,251 @@
+// The rover physics as the rest of the simulator uses it: drive, step, the joints through their
+// backlash and lock, faults, determinism. Every scenario counts exact steps of 1 ms.
+#include "sim/physics/rover_physics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "physics_test_support.hpp"
+#include "sim/physics/chassis_geometry.hpp"
+
+namespace marsokhod::sim {
+namespace {
+
+using testing::all_wheels;
+using testing::drive_at;
+using testing::expect_healthy;
+using testing::joints_only;
+using testing::run;
+
+TEST(RoverPhysics, StartsAtRestOnTheShaftsInitialPositions) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  EXPECT_DOUBLE_EQ(physics.timestep_s(), 0.001);
+  EXPECT_DOUBLE_EQ(physics.time_s(), 0.0);
+  const MotorVector shaft = physics.shaft_angle_rad();
+  EXPECT_DOUBLE_EQ(shaft[kFrontJoint], -1.2121);  // Remark 3.1
+  EXPECT_DOUBLE_EQ(shaft[kRearJoint], 1.2121);
+  EXPECT_DOUBLE_EQ(physics.truth().joint_angle_rad[kRearJoint], 1.2121);
+  run(physics, 500);
+  EXPECT_NEAR(physics.time_s(), 0.5, 1e-12);
+  // Unpowered, the rover settles and stays put: the joints hold on their locks.
+  EXPECT_NEAR(physics.truth().joint_angle_rad[kFrontJoint], -1.2121, 1e-3);
+  EXPECT_NEAR(physics.truth().joint_angle_rad[kRearJoint], 1.2121, 1e-3);
+  EXPECT_NEAR(physics.truth().position_m[0], 0.0, 1e-3);
+  expect_healthy(physics);
+}
+
+TEST(RoverPhysics, RejectsADriveOffTheSpeedTorqueLine) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  MotorDrive drive = drive_at(all_wheels(1.0));
+  drive.droop_radps_per_nm[3] = 0.0;
+  EXPECT_THROW(physics.set_drive(drive), std::invalid_argument);
+  drive = drive_at(all_wheels(1.0));
+  drive.no_load_speed_radps[7] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(physics.set_drive(drive), std::invalid_argument);
+  drive = drive_at(all_wheels(1.0), -1.0);
+  EXPECT_THROW(physics.set_drive(drive), std::invalid_argument);
+}
+
+TEST(RoverPhysics, RejectsAnInitialJointBeyondItsStops) {
+  Params params;
+  params.motors.initial_position_rad[kRearJoint] = 3.0;
+  EXPECT_THROW(RoverPhysics(params, TerrainSpec{}), std::invalid_argument);
+}
+
+TEST(RoverPhysics, WheelTorqueFollowsTheSpeedTorqueLine) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  run(physics, 300);
+  physics.set_drive(drive_at(all_wheels(2.0)));
+  physics.step();
+  // Standing wheels: τ = (ω0 − 0)/droop, below stall.
+  EXPECT_NEAR(physics.shaft_torque_nm()[kCenterLeft], 2.0 / testing::kDroopRadpsPerNm, 0.5);
+  physics.set_drive(drive_at(all_wheels(2.0), 10.0));
+  physics.step();
+  EXPECT_NEAR(physics.shaft_torque_nm()[kCenterLeft], 10.0, 1e-9);  // clipped at stall
+  run(physics, 1500);
+  // Cruising on hard ground: hardly any load, so the wheels turn at ω0 − droop·τ ≈ ω0.
+  const MotorVector speed = physics.shaft_velocity_radps();
+  const MotorVector torque = physics.shaft_torque_nm();
+  for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
+    EXPECT_NEAR(speed[wheel], 2.0 - testing::kDroopRadpsPerNm * torque[wheel], 1e-3) << wheel;
+    EXPECT_NEAR(speed[wheel], 2.0, 0.01) << wheel;
+  }
+  expect_healthy(physics);
+}
+
+// Shaft travel from the start until the joint has moved by 1 mrad, the shaft turning at `speed`.
+double shaft_travel_before_joint_moves(RoverPhysics& physics, std::size_t motor,
+                                       double speed_radps) {
+  MotorVector speeds{};
+  speeds[motor] = speed_radps;
+  physics.set_drive(drive_at(speeds));
+  const double shaft_start = physics.shaft_angle_rad()[motor];
+  const double joint_start = physics.truth().joint_angle_rad[motor];
+  for (int step = 0; step < 3000; ++step) {
+    physics.step();
+    if (std::abs(physics.truth().joint_angle_rad[motor] - joint_start) > 1e-3) {
+      return std::abs(physics.shaft_angle_rad()[motor] - shaft_start);
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+// Procedure 4.1's backlash: 14° at the rear joint. Procedure 4.3 leaves the shaft at the gap's
+// lower end, so extending (+) first crosses the gap; contracting at once does not.
+TEST(RoverPhysics, RearJointMovesOnlyAfterTheShaftCrossesTheGap) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  physics.set_drive(drive_at({}));
+  run(physics, 300);
+  // 1 mrad of joint motion at 2 rad/s of shaft adds about 1 mrad and a few steps of lag.
+  EXPECT_NEAR(shaft_travel_before_joint_moves(physics, kRearJoint, 2.0), 0.250, 0.01);
+  run(physics, 200);
+  // Reversing: the whole gap again before the joint turns back.
+  EXPECT_NEAR(shaft_travel_before_joint_moves(physics, kRearJoint, -2.0), 0.250, 0.01);
+  expect_healthy(physics);
+}
+
+TEST(RoverPhysics, FrontJointBacklashIsThreeDegrees) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  physics.set_drive(drive_at({}));
+  run(physics, 300);
+  // p6 = −γf: extending is negative, from the gap's lower end at once.
+  EXPECT_LT(shaft_travel_before_joint_moves(physics, kFrontJoint, -2.0), 0.01);
+  run(physics, 200);
+  EXPECT_NEAR(shaft_travel_before_joint_moves(physics, kFrontJoint, 2.0), 0.052, 0.01);
+  expect_healthy(physics);
+}
+
+// Figure 3.3: "the central unit is tilted by ½(αf − αr)". Extending the front joint on flat
+// ground lowers the front strut to αf(γf) and the center unit follows half way, nose down.
+TEST(RoverPhysics, ExtendingTheFrontJointLengthensTheBaseAndTiltsTheCenterUnit) {
+  const Params params;
+  RoverPhysics physics(params, TerrainSpec{});
+  physics.set_drive(drive_at({}));
+  run(physics, 300);
+  const GroundTruth before = physics.truth();
+  MotorVector speeds{};
+  speeds[kFrontJoint] = -2.0;
+  physics.set_drive(joints_only(speeds));
+  run(physics, 500);
+  physics.set_drive(drive_at({}));
+  run(physics, 500);
+  const GroundTruth after = physics.truth();
+  const double front_bend = -after.joint_angle_rad[kFrontJoint];
+  const double rear_bend = after.joint_angle_rad[kRearJoint];
+  EXPECT_GT(front_bend, 1.8);
+  const auto base_m = [](const GroundTruth& truth) {
+    return truth.wheel_position_m[kFrontLeft][0] - truth.wheel_position_m[kBackLeft][0];
+  };
+  EXPECT_NEAR(base_m(after) - base_m(before),
+              axle_distance_m(params.geometry, front_bend) -
+                  axle_distance_m(params.geometry, vertical_bend_rad(params.geometry)),
+              5e-3);
+  const double tilt_rad = 0.5 * (strut_elevation_rad(params.geometry, front_bend) -
+                                 strut_elevation_rad(params.geometry, rear_bend));
+  EXPECT_NEAR(after.roll_pitch_yaw_rad[1], -tilt_rad, 3e-3);  // nose down: positive about y
+  EXPECT_GT(after.roll_pitch_yaw_rad[1], 0.01);
+  expect_healthy(physics);
+}
+
+// Chapter 5.3's lock: with the joint motors idle, driving the rover loads the joints and they
+// keep their angles.
+TEST(RoverPhysics, IdleJointsHoldUnderLoad) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  MotorVector speeds{};
+  speeds[kFrontJoint] = -2.0;
+  speeds[kRearJoint] = 2.0;
+  physics.set_drive(joints_only(speeds));
+  run(physics, 600);  // both levers well extended: their weight and the ground bend them
+  physics.set_drive(drive_at(all_wheels(2.0)));
+  run(physics, 50);
+  const MotorVector held = physics.truth().joint_angle_rad;
+  EXPECT_LT(held[kFrontJoint], -1.5);
+  EXPECT_GT(held[kRearJoint], 1.5);
+  run(physics, 2000);
+  EXPECT_NEAR(physics.truth().joint_angle_rad[kFrontJoint], held[kFrontJoint], 2e-3);
+  EXPECT_NEAR(physics.truth().joint_angle_rad[kRearJoint], held[kRearJoint], 2e-3);
+  EXPECT_GT(physics.truth().position_m[0], 0.3);  // it did drive
+  expect_healthy(physics);
+}
+
+// A load stronger than the motor stalls the joint; the lock never lets it be driven back. Driving
+// forward on sand, the rear wheels push the rear axle toward the center unit against the rolling
+// resistance (≈ 6 N·m about the rear joint), against extending it; the rear joint's motor,
+// limited to 0.5 N·m, crosses the gap, bears on the joint and stalls.
+TEST(RoverPhysics, AWeakMotorStallsButIsNeverBackDriven) {
+  TerrainSpec terrain;
+  terrain.ground = sand();
+  RoverPhysics physics(Params{}, terrain);
+  physics.set_drive(drive_at({}));
+  run(physics, 300);
+  const double start_rad = physics.truth().joint_angle_rad[kRearJoint];
+  MotorVector speeds = all_wheels(2.0);
+  speeds[kRearJoint] = 2.0;
+  MotorDrive drive = drive_at(speeds);
+  drive.stall_torque_nm[kRearJoint] = 0.5;
+  physics.set_drive(drive);
+  for (int step = 0; step < 3000; ++step) {
+    physics.step();
+    ASSERT_GE(physics.truth().joint_angle_rad[kRearJoint], start_rad - 2e-3) << step;
+  }
+  // The shaft has crossed the gap and pushes at its stall torque, standing still.
+  EXPECT_NEAR(physics.shaft_angle_rad()[kRearJoint] - physics.truth().joint_angle_rad[kRearJoint],
+              0.250, 5e-3);
+  EXPECT_NEAR(physics.shaft_torque_nm()[kRearJoint], 0.5, 1e-9);
+  EXPECT_NEAR(physics.shaft_velocity_radps()[kRearJoint], 0.0, 1e-2);
+  EXPECT_GT(physics.truth().position_m[0], 0.4);  // while the rover drove on
+  expect_healthy(physics);
+}
+
+TEST(RoverPhysics, ABlockedWheelStallsItsMotor) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  run(physics, 300);
+  physics.set_wheel_blocked(kCenterLeft, true);
+  const double angle = physics.shaft_angle_rad()[kCenterLeft];
+  physics.set_drive(drive_at(all_wheels(1.0)));
+  run(physics, 1000);
+  EXPECT_NEAR(physics.shaft_angle_rad()[kCenterLeft], angle, 0.01);
+  EXPECT_NEAR(physics.shaft_torque_nm()[kCenterLeft], 1.0 / testing::kDroopRadpsPerNm, 1.0);
+  physics.set_wheel_blocked(kCenterLeft, false);
+  run(physics, 1000);
+  EXPECT_NEAR(physics.shaft_velocity_radps()[kCenterLeft], 1.0, 0.05);
+  EXPECT_THROW(physics.set_wheel_blocked(6, true), std::out_of_range);
+  expect_healthy(physics);
+}
+
+TEST(RoverPhysics, AWheelWithoutContactSpinsFree) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  physics.set_wheel_contact(kFrontRight, false);
+  run(physics, 500);
+  const GroundTruth truth = physics.truth();
+  EXPECT_FALSE(truth.wheel_contact[kFrontRight]);
+  EXPECT_TRUE(truth.wheel_contact[kFrontLeft]);
+  EXPECT_THROW(physics.set_wheel_contact(9, false), std::out_of_range);
+  expect_healthy(physics);
+}
+
+TEST(RoverPhysics, TwoRunsAreBitIdentical) {
+  const auto record = [] {
+    RoverPhysics physics(Params{}, testing::slope_deg(5.0));
+    MotorVector speeds = all_wheels(1.5);
+    speeds[kCenterLeft] = 0.5;
+    speeds[kRearJoint] = 1.0;
+    physics.set_drive(drive_at(speeds));
+    run(physics, 1500);
+    return std::make_pair(physics.truth(), physics.imu());
+  };
+  const auto [first, first_imu] = record();
+  const auto [second, second_imu] = record();
+  EXPECT_EQ(first.position_m, second.position_m);
+  EXPECT_EQ(first.roll_pitch_yaw_rad, second.roll_pitch_yaw_rad);
+  EXPECT_EQ(first.velocity_mps, second.velocity_mps);
+  EXPECT_EQ(first.joint_angle_rad, second.joint_angle_rad);
+  EXPECT_EQ(first.wheel_slip_mps, second.wheel_slip_mps);
+  EXPECT_EQ(first_imu.accel_mps2, second_imu.accel_mps2);
+}
+
+}  // namespace
+}  // namespace marsokhod::sim

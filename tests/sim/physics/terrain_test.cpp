@@ -1,0 +1,185 @@
+#include "sim/physics/terrain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace marsokhod::sim {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+TerrainSpec read(const std::string& text, const std::filesystem::path& base = ".") {
+  const toml::table file = toml::parse(text);
+  return terrain_from_toml(*file["terrain"].as_table(), base);
+}
+
+// The error must name the key (so that an operator finds it) and say what is wrong.
+void expect_error(const std::string& text, const std::string& key, const std::string& what) {
+  try {
+    read(text);
+    FAIL() << "accepted:\n" << text;
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(key), std::string::npos) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+  }
+}
+
+TEST(TerrainMaterials, SandIsSlipperierAndResistsRolling) {
+  EXPECT_DOUBLE_EQ(hard_ground().sliding_friction, 0.9);
+  EXPECT_DOUBLE_EQ(hard_ground().rolling_friction_m, 0.0);
+  EXPECT_LT(sand().sliding_friction, hard_ground().sliding_friction);
+  EXPECT_GT(sand().rolling_friction_m, 0.0);
+}
+
+TEST(TerrainFromToml, FlatHardGroundByDefault) {
+  const TerrainSpec terrain = read("[terrain]\nkind = \"flat\"\n");
+  EXPECT_EQ(terrain.kind, TerrainKind::kFlat);
+  EXPECT_DOUBLE_EQ(terrain.ground.sliding_friction, 0.9);
+  EXPECT_TRUE(terrain.obstacles.empty());
+}
+
+TEST(TerrainFromToml, NamedAndCustomMaterials) {
+  EXPECT_DOUBLE_EQ(
+      read("[terrain]\nkind = \"flat\"\nmaterial = \"sand\"\n").ground.sliding_friction,
+      sand().sliding_friction);
+  const TerrainSpec custom = read(
+      "[terrain]\nkind = \"flat\"\nmaterial = { friction = 0.7, rolling_friction_m = 0.01 }\n");
+  EXPECT_DOUBLE_EQ(custom.ground.sliding_friction, 0.7);
+  EXPECT_DOUBLE_EQ(custom.ground.torsional_friction_m, 0.0);
+  EXPECT_DOUBLE_EQ(custom.ground.rolling_friction_m, 0.01);
+}
+
+TEST(TerrainFromToml, SlopeInDegrees) {
+  const TerrainSpec terrain = read("[terrain]\nkind = \"slope\"\nslope_deg = 15\n");
+  EXPECT_EQ(terrain.kind, TerrainKind::kSlope);
+  EXPECT_NEAR(terrain.slope_rad, 15 * kDeg, 1e-15);
+  EXPECT_NEAR(read("[terrain]\nkind = \"slope\"\nslope_deg = -30.5\n").slope_rad, -30.5 * kDeg,
+              1e-15);
+}
+
+TEST(TerrainFromToml, ObstacleCourseWithARockAndATreeTrunk) {
+  const TerrainSpec terrain = read(R"(
+[terrain]
+kind = "obstacles"
+material = "hard"
+[[terrain.obstacles]]
+shape = "box"
+center_m = [1.5, 0.0, 0.05]
+size_m = [0.2, 1.0, 0.1]
+orientation_deg = [0, 0, 30]
+[[terrain.obstacles]]
+shape = "cylinder"
+center_m = [3.0, 0.0, 0.15]
+radius_m = 0.15
+length_m = 2.0
+orientation_deg = [90, 0, 0]
+material = "sand"
+)");
+  ASSERT_EQ(terrain.obstacles.size(), 2u);
+  const Obstacle& rock = terrain.obstacles[0];
+  EXPECT_EQ(rock.shape, ObstacleShape::kBox);
+  EXPECT_DOUBLE_EQ(rock.box_size_m[1], 1.0);
+  EXPECT_NEAR(rock.roll_pitch_yaw_rad[2], 30 * kDeg, 1e-15);
+  EXPECT_DOUBLE_EQ(rock.material.sliding_friction, hard_ground().sliding_friction);
+  const Obstacle& trunk = terrain.obstacles[1];
+  EXPECT_EQ(trunk.shape, ObstacleShape::kCylinder);
+  EXPECT_DOUBLE_EQ(trunk.cylinder_radius_m, 0.15);
+  EXPECT_DOUBLE_EQ(trunk.cylinder_length_m, 2.0);
+  EXPECT_NEAR(trunk.roll_pitch_yaw_rad[0], std::numbers::pi / 2, 1e-15);
+  EXPECT_DOUBLE_EQ(trunk.material.sliding_friction, sand().sliding_friction);
+}
+
+TEST(TerrainFromToml, HeightfieldImageRelativeToTheScenario) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "marsokhod_terrain_test";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "dune.pgm") << "P2 3 2 2\n0 1 2\n2 1 0\n";
+  const TerrainSpec terrain = read(R"(
+[terrain]
+kind = "heightfield"
+material = "sand"
+image = "dune.pgm"
+size_m = [6.0, 4.0]
+max_height_m = 0.3
+)",
+                                   dir);
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(terrain.kind, TerrainKind::kHeightfield);
+  EXPECT_EQ(terrain.heightfield.image.width, 3u);
+  EXPECT_DOUBLE_EQ(terrain.heightfield.image.at(0, 2), 1.0);
+  EXPECT_DOUBLE_EQ(terrain.heightfield.size_x_m, 6.0);
+  EXPECT_DOUBLE_EQ(terrain.heightfield.size_y_m, 4.0);
+  EXPECT_DOUBLE_EQ(terrain.heightfield.max_height_m, 0.3);
+}
+
+TEST(TerrainFromToml, ErrorsNameTheKey) {
+  expect_error("[terrain]\nmaterial = \"hard\"\n", "terrain.kind", "missing");
+  expect_error("[terrain]\nkind = \"lava\"\n", "terrain.kind", "\"heightfield\"");
+  expect_error("[terrain]\nkind = \"flat\"\nslope_deg = 3\n", "terrain.slope_deg",
+               "not a known key");
+  expect_error("[terrain]\nkind = \"slope\"\n", "terrain.slope_deg", "missing");
+  expect_error("[terrain]\nkind = \"slope\"\nslope_deg = 90\n", "terrain.slope_deg", "outside");
+  expect_error("[terrain]\nkind = \"slope\"\nslope_deg = \"steep\"\n", "terrain.slope_deg",
+               "number");
+  expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material", "unknown");
+  expect_error("[terrain]\nkind = \"flat\"\nmaterial = { friction = -1 }\n",
+               "terrain.material.friction", "outside");
+  expect_error("[terrain]\nkind = \"flat\"\nmaterial = { friction = 1, roll = 1 }\n",
+               "terrain.material.roll", "not a known key");
+  expect_error("[terrain]\nkind = \"obstacles\"\n", "terrain.obstacles", "at least one");
+  expect_error(
+      "[terrain]\nkind = \"obstacles\"\n[[terrain.obstacles]]\nshape = \"box\"\n"
+      "center_m = [0, 0, 0]\n",
+      "terrain.obstacles[0].size_m", "missing");
+  expect_error(
+      "[terrain]\nkind = \"obstacles\"\n[[terrain.obstacles]]\nshape = \"box\"\n"
+      "center_m = [0, 0]\nsize_m = [1, 1, 1]\n",
+      "terrain.obstacles[0].center_m", "3 numbers");
+  expect_error(
+      "[terrain]\nkind = \"heightfield\"\nimage = \"no-such-file.pgm\"\n"
+      "size_m = [1, 1]\nmax_height_m = 1\n",
+      "terrain.image", "cannot open");
+}
+
+TEST(TerrainFromToml, ErrorsGiveTheLine) {
+  expect_error("[terrain]\nkind = \"slope\"\n\nslope_deg = 95\n", "line 4", "outside");
+}
+
+TEST(TerrainValidate, RejectsWhatMuJoCoCannotBuild) {
+  TerrainSpec terrain;
+  EXPECT_NO_THROW(validate(terrain));
+  terrain.ground.sliding_friction = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(validate(terrain), std::invalid_argument);
+  terrain = TerrainSpec{};
+  terrain.kind = TerrainKind::kSlope;
+  terrain.slope_rad = std::numbers::pi / 2;
+  EXPECT_THROW(validate(terrain), std::invalid_argument);
+  terrain = TerrainSpec{};
+  terrain.kind = TerrainKind::kObstacles;
+  EXPECT_THROW(validate(terrain), std::invalid_argument);
+  terrain.obstacles.push_back(Obstacle{});
+  EXPECT_NO_THROW(validate(terrain));
+  terrain.obstacles[0].box_size_m[2] = 0.0;
+  EXPECT_THROW(validate(terrain), std::invalid_argument);
+  terrain = TerrainSpec{};
+  terrain.kind = TerrainKind::kHeightfield;  // no image
+  EXPECT_THROW(validate(terrain), std::invalid_argument);
+}
+
+TEST(TerrainKindNames, ReadBackAsInTheScenarioFile) {
+  EXPECT_EQ(to_string(TerrainKind::kFlat), "flat");
+  EXPECT_EQ(to_string(TerrainKind::kSlope), "slope");
+  EXPECT_EQ(to_string(TerrainKind::kObstacles), "obstacles");
+  EXPECT_EQ(to_string(TerrainKind::kHeightfield), "heightfield");
+}
+
+}  // namespace
+}  // namespace marsokhod::sim
