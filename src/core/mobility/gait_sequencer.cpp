@@ -20,6 +20,12 @@ void check_input(const GaitInput& input) {
   control::require_finite(input.front_joint.velocity, kWhere, "front_joint.velocity (w6)");
   control::require_finite(input.rear_joint.position, kWhere, "rear_joint.position (p7)");
   control::require_finite(input.rear_joint.velocity, kWhere, "rear_joint.velocity (w7)");
+  if (input.front_measured_radps) {
+    control::require_finite(*input.front_measured_radps, kWhere, "front_measured_radps (w6)");
+  }
+  if (input.rear_measured_radps) {
+    control::require_finite(*input.rear_measured_radps, kWhere, "rear_measured_radps (w7)");
+  }
   control::require_positive(input.period_s, kWhere, "period_s (h)");
 }
 
@@ -120,7 +126,8 @@ AxleFactors GaitSequencer::segment_factors(const GaitInput& input) const {
   }
   const AxleDistanceRates rates =
       axle_distance_rates(input.front_joint.position, input.rear_joint.position,
-                          input.front_joint.velocity, input.rear_joint.velocity, geometry_);
+                          input.front_measured_radps.value_or(input.front_joint.velocity),
+                          input.rear_measured_radps.value_or(input.rear_joint.velocity), geometry_);
   return two_joint_axle_factors(rates, rule.epsilon);
 }
 

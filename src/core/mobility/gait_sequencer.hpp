@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 
 #include "core/control/control_params.hpp"
 #include "core/control/motion_model.hpp"
@@ -38,9 +39,16 @@ struct GaitInput {
   Gait gait = Gait::kNone;
   double gait_speed = 0.0;                         // s ∈ [−1, 1]
   DrivingIntent intent = DrivingIntent::kForward;  // ϱ
-  control::MotionState front_joint;                // measured p6 [rad], w6 [rad/s]
-  control::MotionState rear_joint;                 // measured p7 [rad], w7 [rad/s]
+  // p6, p7 measured [rad]; the velocity is the joint's velocity state of (4.13) [rad/s]: the
+  // measured one on an ideal joint, the last commanded ŵ on a joint with backlash (whose
+  // measured velocity is 0 while the shaft crosses the gap, which would stall the law).
+  control::MotionState front_joint;
+  control::MotionState rear_joint;
   double period_s = 0.0;                           // h
+  // The measured w6, w7 for the ε-formula of chapter 5.3 (SPEC.md: from the measured joint
+  // velocities); without them the velocity states above are used.
+  std::optional<double> front_measured_radps{};
+  std::optional<double> rear_measured_radps{};
 };
 
 struct GaitOutput {

@@ -1,0 +1,234 @@
+#include "driver/driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/protocol/codec.hpp"
+#include "driver/duty_rules.hpp"
+
+namespace marsokhod::driver {
+namespace {
+
+constexpr double kStillSpeedRadps = 0.01;  // below this every motor counts as standing
+
+}  // namespace
+
+const char* mode_name(DriverMode mode) {
+  switch (mode) {
+    case DriverMode::kStartup: return "startup";
+    case DriverMode::kDriving: return "driving";
+    case DriverMode::kCalibration: return "calibration";
+    case DriverMode::kFault: return "fault";
+  }
+  return "?";
+}
+
+Driver::Driver(const Params& params)
+    : params_(&params),
+      intake_(params.cycle.icr),
+      startup_(params),
+      motors_(params.motors),
+      sensors_(params.sensors, params.filters),
+      operator_(params),
+      motion_(params),
+      runtime_(runtime_settings_from(params)) {
+  validate(runtime_);
+}
+
+void Driver::set_runtime(const RuntimeSettings& settings) {
+  validate(settings);
+  runtime_ = settings;
+}
+
+void Driver::take_responses(const CycleResponses& r) {
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    if (r.configuration[i]) startup_.on_configured(i);
+    if (r.control[i]) motors_.update_motor(*r.control[i], params_->cycle.con);
+  }
+  if (r.dead_man_acknowledged) startup_.on_dead_man_acknowledged();
+  if (r.measurement) {
+    bool still = true;
+    for (std::size_t i = 0; i < kMotorCount; ++i) {
+      still = still && duty_[i] == 0.0 &&
+              std::abs(motors_.sample().velocity_radps[i]) < kStillSpeedRadps;
+    }
+    const bool all_zero = std::all_of(duty_.begin(), duty_.end(), [](double d) { return d == 0.0; });
+    const tracking::SensorState& s = sensors_.update(*r.measurement, still, all_zero);
+    status_.supply_v = s.supply_v;
+    status_.reference_supply_v = s.reference_supply_v;
+    status_.yaw_rate_radps = s.yaw_rate_radps;
+    status_.accel_mps2 = s.accel_mps2;
+    status_.front_tilt_rad = s.front_tilt_rad;
+    status_.rear_tilt_rad = s.rear_tilt_rad;
+  }
+}
+
+void Driver::update_faults(const OperatorInput* input) {
+  const auto& silent = intake_.silent_cycles();
+  bool any_silent = false;
+  for (std::size_t i = 0; i <= kMotorCount; ++i) {
+    if (i < kMotorCount) {
+      status_.motors[i].silent_cycles = silent[i];
+    } else {
+      status_.sensor_silent_cycles = silent[i];
+    }
+    if (silent[i] < params_->safety.missed_responses_limit) continue;
+    any_silent = true;
+    const std::string fault = "µ" + std::to_string(i) + " silent";
+    if (std::find(status_.faults.begin(), status_.faults.end(), fault) == status_.faults.end()) {
+      status_.faults.push_back(fault);
+    }
+  }
+  if (input != nullptr && input->clear_faults && !any_silent) status_.faults.clear();
+  status_.warnings.clear();
+  if (status_.supply_v > 0.0 && status_.supply_v < params_->power.brownout_v + 0.5) {
+    status_.warnings.push_back("supply " + std::to_string(status_.supply_v).substr(0, 5) +
+                               " V near the brown-out voltage");
+  }
+  if (intake_.counters().malformed > 0) {
+    status_.warnings.push_back("malformed frames: " + intake_.counters().last_error);
+  }
+}
+
+MotionInput Driver::motion_input(double period_s) const {
+  MotionInput in;
+  in.period_s = period_s;
+  const tracking::MotorsSample& m = motors_.sample();
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    in.shaft_position_rad[i] = m.position_rad[i] + position_offset_rad_[i];
+    in.shaft_velocity_radps[i] = m.velocity_radps[i];
+  }
+  // Until µ8 has answered, the nominal voltage and a level rover stand in.
+  in.supply_v = status_.supply_v > 1.0 ? status_.supply_v : params_->motors.nominal_supply_v;
+  if (sensors_.state().update_count > 0) in.accel_mps2 = status_.accel_mps2;
+  in.targets = targets_;
+  return in;
+}
+
+void Driver::reset_joint_positions() {
+  const tracking::MotorsSample& m = motors_.sample();
+  MotorVector shaft{};
+  for (std::size_t i = 0; i < kMotorCount; ++i) shaft[i] = m.position_rad[i] + position_offset_rad_[i];
+  for (std::size_t j : {kFrontJoint, kRearJoint}) {
+    position_offset_rad_[j] = params_->motors.initial_position_rad[j] - m.position_rad[j];
+    shaft[j] = params_->motors.initial_position_rad[j];
+  }
+  motion_.reset_joint_positions(shaft);
+}
+
+MotorVector Driver::wanted_duties(double time_s, const MotionInput& input) {
+  MotorVector wanted{};
+  if (status_.mode == DriverMode::kDriving) return motion_.update(input, runtime_, status_);
+  motion_.observe(input, status_);
+  if (status_.mode == DriverMode::kStartup && startup_.phase() == StartupPhase::kCalibrate) {
+    const auto d = startup_.calibrate(
+        time_s, {input.shaft_position_rad[kFrontJoint], input.shaft_position_rad[kRearJoint]},
+        {input.shaft_velocity_radps[kFrontJoint], input.shaft_velocity_radps[kRearJoint]});
+    wanted[kFrontJoint] = d[0];
+    wanted[kRearJoint] = d[1];
+  } else if (status_.mode == DriverMode::kCalibration) {
+    const auto d = mobility::calibration_duties(targets_.joint_buttons, params_->operator_input);
+    wanted[kFrontJoint] = d[0];
+    wanted[kRearJoint] = d[1];
+  }
+  return wanted;
+}
+
+const std::vector<protocol::CanFrame>& Driver::step(double time_s,
+                                                    std::span<const protocol::CanFrame> received,
+                                                    const OperatorInput* input) {
+  if (!start_time_s_) {
+    start_time_s_ = time_s;
+    last_time_s_ = time_s;
+  }
+  const double period_s = time_s > last_time_s_ ? time_s - last_time_s_ : params_->cycle.period_s;
+  status_.cycle_time_s = time_s - last_time_s_;
+  status_.mission_time_s = time_s - *start_time_s_;
+  last_time_s_ = time_s;
+  ++status_.cycle;
+
+  take_responses(intake_.take(received, expected_));
+  status_.bus = intake_.counters();
+  if (input != nullptr) {
+    const auto rejection = operator_.receive(*input, time_s);
+    if (rejection) status_.operator_rejection = *rejection;
+  }
+  targets_ = operator_.targets(time_s);
+  status_.operator_timeout = operator_.timed_out(time_s);
+  status_.targets = {targets_.v1_radps, targets_.v2_radps, targets_.v4_radps, targets_.v6_radps,
+                     targets_.v7_radps};
+  update_faults(input);
+
+  status_.startup_phase = startup_.phase();
+  if (!status_.faults.empty()) {
+    status_.mode = DriverMode::kFault;
+  } else if (startup_.phase() != StartupPhase::kDone) {
+    status_.mode = DriverMode::kStartup;
+  } else {
+    status_.mode = targets_.calibration_mode ? DriverMode::kCalibration : DriverMode::kDriving;
+  }
+  const MotionInput in = motion_input(period_s);
+  const MotorVector wanted = wanted_duties(time_s, in);
+  if (startup_.phase() == StartupPhase::kDone && !startup_calibrated_) {
+    startup_calibrated_ = true;
+    reset_joint_positions();  // Procedure 4.3: p⁰ := p̄⁰ of Remark 3.1
+  }
+  const bool calibrating = status_.mode == DriverMode::kCalibration;
+  if (was_calibrating_ && !calibrating && status_.mode == DriverMode::kDriving) {
+    reset_joint_positions();  // the operator left calibration mode
+  }
+  was_calibrating_ = calibrating;
+
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    // What is sent is pwm/icr: the status and (4.4) see the quantised duty.
+    const double duty = next_duty(duty_[i], wanted[i], params_->safety);
+    duty_[i] = duty_of(control_request(static_cast<std::uint8_t>(i), duty, params_->cycle.icr),
+                       params_->cycle.icr);
+    status_.motors[i].duty = duty_[i];
+  }
+  motion_.record_sent(duty_, in.supply_v);
+  status_.startup_phase = startup_.phase();
+  encode_requests();
+  return requests_;
+}
+
+std::string Driver::lcd_text() const {
+  const char* code = "DR";
+  if (status_.mode == DriverMode::kFault) code = "FT";
+  else if (status_.mode == DriverMode::kCalibration) code = "CA";
+  else if (status_.mode == DriverMode::kStartup) code = "SU";
+  else if (status_.operator_timeout) code = "TO";
+  char text[16];
+  std::snprintf(text, sizeof text, "%4.1fV %s", std::clamp(status_.supply_v, 0.0, 99.9), code);
+  std::string out(text);
+  out.resize(8, ' ');
+  return out;
+}
+
+void Driver::encode_requests() {
+  requests_.clear();
+  const int icr = params_->cycle.icr;
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    const auto node = static_cast<std::uint8_t>(i);
+    if (!startup_.configured(i)) {
+      requests_.push_back(protocol::encode(protocol::ConfigurationRequest{
+          node, static_cast<std::uint16_t>(icr), 0, static_cast<std::uint8_t>(params_->cycle.con)}));
+    } else {
+      requests_.push_back(protocol::encode(control_request(node, duty_[i], icr)));
+    }
+  }
+  if (startup_.phase() == StartupPhase::kEnableDeadMan) {
+    requests_.push_back(protocol::encode(
+        protocol::DeadManRequest{static_cast<std::uint8_t>(params_->safety.dead_man_dog)}));
+  }
+  protocol::MeasurementRequest m;
+  status_.lcd = lcd_text();
+  std::copy_n(status_.lcd.begin(), 8, m.lcd.begin());
+  m.led0 = status_.mode == DriverMode::kDriving && !status_.operator_timeout;
+  m.led1 = status_.mode == DriverMode::kFault;
+  requests_.push_back(protocol::encode(m));
+  expected_.fill(true);
+}
+
+}  // namespace marsokhod::driver

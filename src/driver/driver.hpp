@@ -1,0 +1,77 @@
+// The driver: one deterministic control cycle (the thesis' Joyride), the same on the rover, in
+// the simulator and in replay. Each call of step() is one cycle of ARCHITECTURE.md:
+//   1.–2. the frames that arrived since the last cycle (responses to the last requests) are
+//         decoded and sorted; missing, duplicated and malformed ones are counted;
+//   3.    tracking (3.2)–(3.5), backlash, ν and load;
+//   4.–6. behaviours, control laws, gaits, summation → duty cycles (MotionController);
+//   7.    the duty-cycle rules of chapter 3.2, then the next requests, encoded, and the status.
+// Time comes in as a value; there are no clocks, threads or I/O here.
+//
+// Safety: no valid operator input for operator_timeout_s ⇒ zero targets and a controlled stop
+// (ramps and the slew limit bring every motor to d = 0). A controller silent for
+// missed_responses_limit cycles latches a fault that stops the rover until the operator clears
+// it (OperatorInput::clear_faults) and every controller answers again. Invalid operator inputs
+// are rejected with a reason and the last valid one stands until the timeout.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "core/params.hpp"
+#include "core/protocol/can_frame.hpp"
+#include "core/tracking/motor_tracker.hpp"
+#include "core/tracking/sensor_tracker.hpp"
+#include "driver/frame_intake.hpp"
+#include "driver/motion_controller.hpp"
+#include "driver/operator_channel.hpp"
+#include "driver/startup.hpp"
+#include "driver/status.hpp"
+
+namespace marsokhod::driver {
+
+class Driver {
+ public:
+  explicit Driver(const Params& params);
+
+  // One cycle at time t [s] (strictly increasing). `received`: every frame seen on the bus since
+  // the previous step. `input`: the operator's newest message, if one arrived this cycle.
+  // Returns the requests to send now, in order µ0…µ7, then µ8.
+  const std::vector<protocol::CanFrame>& step(double time_s,
+                                              std::span<const protocol::CanFrame> received,
+                                              const OperatorInput* input = nullptr);
+
+  const DriverStatus& status() const { return status_; }
+  const RuntimeSettings& runtime() const { return runtime_; }
+  // Throws std::invalid_argument (see validate(RuntimeSettings)); nothing changes then.
+  void set_runtime(const RuntimeSettings& settings);
+
+ private:
+  void take_responses(const CycleResponses& responses);
+  void update_faults(const OperatorInput* input);
+  MotionInput motion_input(double period_s) const;
+  MotorVector wanted_duties(double time_s, const MotionInput& input);
+  void reset_joint_positions();
+  void encode_requests();
+  std::string lcd_text() const;
+
+  const Params* params_;
+  FrameIntake intake_;
+  Startup startup_;
+  tracking::AllMotorsTracker motors_;
+  tracking::SensorTracker sensors_;
+  OperatorChannel operator_;
+  MotionController motion_;
+  RuntimeSettings runtime_;
+  DriverStatus status_;
+  mobility::OperatorTargets targets_;
+  MotorVector position_offset_rad_{};  // Procedure 4.3 re-zeroes the joints' p̄
+  MotorVector duty_{};
+  std::array<bool, kMotorCount + 1> expected_{};
+  std::optional<double> start_time_s_;
+  double last_time_s_ = 0.0;
+  bool was_calibrating_ = false;
+  bool startup_calibrated_ = false;
+  std::vector<protocol::CanFrame> requests_;
+};
+
+}  // namespace marsokhod::driver

@@ -1,0 +1,254 @@
+#include "driver/motion_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/adaptation/no_load_velocity.hpp"
+#include "core/behaviour/contract_on_turn.hpp"
+#include "core/behaviour/load_distribution.hpp"
+#include "core/behaviour/power_management.hpp"
+#include "core/behaviour/slant_response.hpp"
+#include "core/control/bounded_velocity_control.hpp"
+#include "core/control/velocity_control.hpp"
+#include "core/mobility/elementary_motion.hpp"
+#include "core/mobility/joint_compensation.hpp"
+#include "core/mobility/lever_geometry.hpp"
+#include "core/mobility/summation.hpp"
+
+namespace marsokhod::driver {
+namespace {
+
+constexpr double kInsideBound = 0.999;  // targets strictly inside ±C keep (4.15)'s log defined
+
+double max_abs_wheel(const MotorVector& v) {
+  double m = 0.0;
+  for (std::size_t i = 0; i < kWheelCount; ++i) m = std::max(m, std::abs(v[i]));
+  return m;
+}
+
+// The joint command may not push a joint further out of its bounds (5.3)/(6.4); back in is fine.
+double respect_bounds(double command, double position, double min_rad, double max_rad) {
+  if (position <= min_rad && command < 0.0) return 0.0;
+  if (position >= max_rad && command > 0.0) return 0.0;
+  return command;
+}
+
+}  // namespace
+
+struct MotionController::JointCommands {
+  double front_radps = 0.0;  // v6
+  double rear_radps = 0.0;   // v7
+  mobility::AxleFactors factors;
+};
+
+RuntimeSettings runtime_settings_from(const Params& params) {
+  RuntimeSettings s;
+  s.switches = behaviour::switches_from_params(params.behaviours, params.load_distribution);
+  s.max_drop_v = params.power.max_drop_v;
+  return s;
+}
+
+void validate(const RuntimeSettings& settings) {
+  if (!(settings.max_drop_v > 0.0 && settings.max_drop_v <= 10.0)) {
+    throw std::invalid_argument("max_drop_v: " + std::to_string(settings.max_drop_v) +
+                                " is out of range; allowed (0, 10] V");
+  }
+  if (!(settings.speed_scale >= 0.0 && settings.speed_scale <= 1.0)) {
+    throw std::invalid_argument("speed_scale: " + std::to_string(settings.speed_scale) +
+                                " is out of range; allowed [0, 1]");
+  }
+}
+
+MotionController::MotionController(const Params& params)
+    : params_(&params),
+      curve_(adaptation::select_motor_curve(params.motor_curves, params.cycle.icr)),
+      backlash_(params.motors),
+      estimator_(adaptation::select_response(params.responses, params.cycle.period_s,
+                                             params.cycle.con)),
+      gait_(params.geometry, params.joints, params.gaits, params.motors) {}
+
+void MotionController::reset_joint_positions(const MotorVector& shaft_position_rad) {
+  backlash_.reset(shaft_position_rad);
+  joint_velocity_ = {};
+  estimator_ = adaptation::NoLoadEstimator(adaptation::select_response(
+      params_->responses, params_->cycle.period_s, params_->cycle.con));
+  last_w_hat_ = {};
+}
+
+void MotionController::observe(const MotionInput& input, DriverStatus& status) {
+  joint_velocity_ = {};  // not driving: the joints' command starts again from rest
+  track(input, status);
+}
+
+void MotionController::track(const MotionInput& input, DriverStatus& status) {
+  backlash_.update(input.shaft_position_rad, input.shaft_velocity_radps);
+  const MotorVector w = backlash_.joint_velocity_radps();
+  const MotorVector p = backlash_.joint_position_rad();
+  // (4.4) with δ⁰ = 0 needs only the history; otherwise last cycle's ŵ stands in for ŵ^k.
+  const MotorVector nu = estimator_.delta().front() == 0.0
+                             ? estimator_.no_load_velocity_radps()
+                             : estimator_.no_load_velocity_radps(last_w_hat_);
+  load_ = adaptation::load(w, nu);
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    MotorStatus& m = status.motors[i];
+    m.shaft_position_rad = input.shaft_position_rad[i];
+    m.position_rad = p[i];
+    m.velocity_radps = w[i];
+    m.no_load_velocity_radps = nu[i];
+    m.load_radps = load_[i];
+  }
+}
+
+MotorVector MotionController::ramp_driving(const MotionInput& input,
+                                           const RuntimeSettings& settings,
+                                           DriverStatus& status) {
+  const double w_max = params_->motors.max_no_load_speed_radps;
+  const control::ControlParams drive{params_->operator_input.drive_rate_per_s, w_max,
+                                     input.period_s};
+  const std::array<double, 3> wanted{input.targets.v1_radps, input.targets.v2_radps,
+                                     input.targets.v4_radps};
+  for (std::size_t j = 0; j < 3; ++j) {
+    const double target =
+        std::clamp(wanted[j] * settings.speed_scale, -kInsideBound * w_max, kInsideBound * w_max);
+    const double c = control::velocity_control(drive_velocity_[j], target, drive);
+    drive_velocity_[j] = control::step({0.0, drive_velocity_[j]}, c, drive).velocity;
+  }
+  status.commands.v1_radps = drive_velocity_[0];
+  status.commands.v2_radps = drive_velocity_[1];
+  status.commands.v4_radps = drive_velocity_[2];
+  const double p6 = status.motors[kFrontJoint].position_rad;
+  const double p7 = status.motors[kRearJoint].position_rad;
+  const mobility::Lever front = mobility::front_lever(p6, params_->geometry);
+  const mobility::Lever rear = mobility::rear_lever(p7, params_->geometry);
+  return mobility::driving_motion({drive_velocity_[0], drive_velocity_[1], 0.0, drive_velocity_[2]},
+                                  front.clearance_m, rear.clearance_m, params_->spin);
+}
+
+MotionController::JointCommands MotionController::joint_commands(const MotionInput& input,
+                                                                 const RuntimeSettings& settings,
+                                                                 DriverStatus& status) {
+  const control::MotionState front{status.motors[kFrontJoint].position_rad, joint_velocity_[0]};
+  const control::MotionState rear{status.motors[kRearJoint].position_rad, joint_velocity_[1]};
+  const mobility::GaitOutput gait = gait_.update(
+      {input.targets.gait, input.targets.gait_speed, intent_, front, rear, input.period_s,
+       status.motors[kFrontJoint].velocity_radps, status.motors[kRearJoint].velocity_radps});
+  status.gait = input.targets.gait;
+  status.gait_state = gait.state_index;
+  status.gait_speed = input.targets.gait_speed;
+  JointCommands out;
+  if (gait.active) {
+    out.front_radps = gait.front_command_radps;
+    out.rear_radps = gait.rear_command_radps;
+    out.factors = gait.factors;
+    return out;
+  }
+  const control::ControlParams joint = control::joint_control_params(*params_);
+  const double limit = kInsideBound * joint.max_speed;
+  // 6.2.2: contract while spinning; v̄ = w/max|n| keeps the wheels' share feasible.
+  const double w_max = params_->motors.max_no_load_speed_radps;
+  const double n6 = max_abs_wheel(mobility::front_joint_compensation(
+      front.position, status.front_axle_factor, params_->geometry));
+  const double n7 = max_abs_wheel(mobility::rear_joint_compensation(
+      rear.position, status.rear_axle_factor, params_->geometry));
+  const behaviour::JointVelocityTargets targets = behaviour::contract_joints_when_turning(
+      {std::clamp(input.targets.v6_radps, -limit, limit),
+       std::clamp(input.targets.v7_radps, -limit, limit)},
+      input.targets.v2_radps * settings.speed_scale, w_max, std::max(n6, 1e-9),
+      std::max(n7, 1e-9), settings.switches);
+  const JointBoundsStatus& b = status.joint_bounds;
+  const double c6 = control::bounded_velocity_control(
+      front, std::clamp(targets.front_radps, -limit, limit), b.front_min_rad, b.front_max_rad, joint);
+  const double c7 = control::bounded_velocity_control(
+      rear, std::clamp(targets.rear_radps, -limit, limit), b.rear_min_rad, b.rear_max_rad, joint);
+  out.front_radps = control::step(front, c6, joint).velocity;
+  out.rear_radps = control::step(rear, c7, joint).velocity;
+  out.factors.front = mobility::front_axle_factor(
+      intent_, mobility::front_clearance_intent(front.velocity));
+  out.factors.rear =
+      mobility::rear_axle_factor(intent_, mobility::rear_clearance_intent(rear.velocity));
+  return out;
+}
+
+MotorVector MotionController::to_duty(const MotorVector& w_hat, const MotionInput& input) const {
+  MotorVector duty{};
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    duty[i] = adaptation::duty_for_no_load_velocity(curve_, w_hat[i], params_->motors.scale[i],
+                                                    input.supply_v,
+                                                    params_->motors.nominal_supply_v);
+  }
+  return duty;
+}
+
+MotorVector MotionController::update(const MotionInput& input, const RuntimeSettings& settings,
+                                     DriverStatus& status) {
+  track(input, status);
+  // (6.3): D from the last duty cycles sent and the loads they met.
+  PowerParams power = params_->power;
+  power.max_drop_v = settings.max_drop_v;
+  status.max_duty = behaviour::next_duty_bound(last_duty_, load_, power, settings.switches);
+  // 6.2.1: gravity, slope σ and the joint bounds (6.4).
+  const auto& a = input.accel_mps2;
+  if (std::hypot(a[0], a[1], a[2]) > 0.1 * params_->sensors.gravity_mps2) {
+    gravity_ = behaviour::next_gravity_direction(gravity_, a, params_->filters.gravity_lambda);
+  }
+  const double p6 = status.motors[kFrontJoint].position_rad;
+  const double p7 = status.motors[kRearJoint].position_rad;
+  status.slope_rad = behaviour::terrain_slope_rad(
+      gravity_, mobility::front_lever(p6, params_->geometry).inclination_rad,
+      mobility::rear_lever(p7, params_->geometry).inclination_rad);
+  const behaviour::JointBounds bounds = behaviour::slant_joint_bounds(
+      status.slope_rad, params_->joints, params_->geometry, settings.switches);
+  status.joint_bounds = {bounds.front_min_rad, bounds.front_max_rad, bounds.rear_min_rad,
+                         bounds.rear_max_rad};
+  // Remark 5.5, then the motions of (5.4).
+  intent_ = mobility::driving_intent(intent_, input.targets.v1_radps);
+  const MotorVector driving = ramp_driving(input, settings, status);
+  JointCommands joints = joint_commands(input, settings, status);
+  const double h = input.period_s;
+  const auto front_place = behaviour::next_axle_placement(
+      front_placement_, joints.factors.front, load_[kFrontJoint],
+      status.motors[kFrontJoint].velocity_radps, h, params_->behaviours, settings.switches);
+  const auto rear_place = behaviour::next_axle_placement(
+      rear_placement_, joints.factors.rear, load_[kRearJoint],
+      status.motors[kRearJoint].velocity_radps, h, params_->behaviours, settings.switches);
+  front_placement_ = front_place.state;
+  rear_placement_ = rear_place.state;
+  status.front_axle_factor = front_place.placement;
+  status.rear_axle_factor = rear_place.placement;
+  joints.front_radps = respect_bounds(joints.front_radps, p6, bounds.front_min_rad, bounds.front_max_rad);
+  joints.rear_radps = respect_bounds(joints.rear_radps, p7, bounds.rear_min_rad, bounds.rear_max_rad);
+  joint_velocity_ = {joints.front_radps, joints.rear_radps};
+  status.commands.v6_radps = joints.front_radps;
+  status.commands.v7_radps = joints.rear_radps;
+  const MotorVector walking = mobility::walking_motion(
+      {p6, p7, joints.front_radps, joints.rear_radps, status.motors[kFrontJoint].velocity_radps,
+       status.motors[kRearJoint].velocity_radps, front_place.placement, rear_place.placement},
+      params_->geometry);
+  // (5.4)–(5.6) under D, then the load distribution h (6.5)/(6.6) within the same bounds.
+  const MotorVector limit = mobility::motor_velocity_bounds(
+      params_->motors.scale, status.max_duty, curve_, input.supply_v,
+      params_->motors.nominal_supply_v);
+  const mobility::Summation sum = mobility::sum_motions(driving, walking, limit);
+  status.driving_scale = sum.driving_scale;
+  status.walking_scale = sum.walking_scale;
+  const MotorVector h_load = behaviour::load_distribution_radps(
+      load_, drive_velocity_[0], params_->load_distribution, settings.switches);
+  MotorVector w_hat{};
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    w_hat[i] = std::clamp(sum.velocities_radps[i] + h_load[i], -limit[i], limit[i]);
+    status.motors[i].commanded_radps = w_hat[i];
+  }
+  return to_duty(w_hat, input);
+}
+
+void MotionController::record_sent(const MotorVector& duty, double supply_v) {
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    last_w_hat_[i] = adaptation::no_load_velocity(curve_, duty[i], params_->motors.scale[i],
+                                                  supply_v, params_->motors.nominal_supply_v);
+  }
+  estimator_.push(last_w_hat_);
+  last_duty_ = duty;
+}
+
+}  // namespace marsokhod::driver

@@ -1,0 +1,93 @@
+// Steps 3–6 of the control cycle (ARCHITECTURE.md) while driving: from the tracked motor
+// positions and velocities, the supply voltage, the accelerometer and the operator's targets to
+// the duty cycles the motors should get.
+//   3. backlash (4.1)/(4.2) → p, w; no-load estimate (4.4) → ν, load l = w − ν
+//   4. behaviours (chapter 6): D (6.3), slope σ and joint bounds (6.4), contract on turn,
+//      axle placement, load distribution h
+//   5. (4.14) ramps v1…v4; (4.16) or a gait's (4.15) moves the joints; ϱ and ρ (Remark 5.5)
+//   6. summation (5.4) with κ under (5.5); + h; (4.3) inverse → duty cycles
+// The duty-cycle rules (slew limit, drv at pwm ≈ 0) and the CAN encoding come after, in Driver.
+#pragma once
+
+#include <array>
+
+#include "core/adaptation/backlash.hpp"
+#include "core/adaptation/motor_curve.hpp"
+#include "core/adaptation/no_load_estimator.hpp"
+#include "core/behaviour/axle_placement.hpp"
+#include "core/behaviour/slope_estimate.hpp"
+#include "core/behaviour/switches.hpp"
+#include "core/mobility/axle_placement.hpp"
+#include "core/mobility/gait_sequencer.hpp"
+#include "core/mobility/gamepad.hpp"
+#include "core/params.hpp"
+#include "driver/status.hpp"
+
+namespace marsokhod::driver {
+
+// What the operator may change at run time (through the console), besides the targets.
+struct RuntimeSettings {
+  behaviour::BehaviourSwitches switches;
+  double max_drop_v = 1.5;   // Υ of (6.3)
+  double speed_scale = 1.0;  // v1ᵈ, v2ᵈ, v4ᵈ are scaled by this ∈ [0, 1] (maximum speed)
+};
+RuntimeSettings runtime_settings_from(const Params& params);
+// Throws std::invalid_argument naming the field for Υ ∉ (0, 10] or speed_scale ∉ [0, 1].
+void validate(const RuntimeSettings& settings);
+
+struct MotionInput {
+  double period_s = 0.0;
+  MotorVector shaft_position_rad{};   // p̄ (calibration offsets applied)
+  MotorVector shaft_velocity_radps{}; // w̄
+  double supply_v = 24.0;             // U
+  std::array<double, 3> accel_mps2{0.0, 0.0, -9.81};
+  mobility::OperatorTargets targets;
+};
+
+class MotionController {
+ public:
+  explicit MotionController(const Params& params);
+
+  // Procedure 4.3's end: the joints' p = p̄ = Remark 3.1's positions; history cleared.
+  void reset_joint_positions(const MotorVector& shaft_position_rad);
+
+  // One driving cycle: the duty cycles wanted (before the slew rules); fills `status`.
+  MotorVector update(const MotionInput& input, const RuntimeSettings& settings,
+                     DriverStatus& status);
+
+  // Tracking only (start-up, calibration, faults): backlash, ν and l, no control.
+  void observe(const MotionInput& input, DriverStatus& status);
+
+  // The duty cycles actually sent (after the slew rules): ŵ^k = ζW(d)U/Ū (4.3) with Ū the
+  // nominal 24 V, remembered for (4.4); d^k for (6.3).
+  void record_sent(const MotorVector& duty, double supply_v);
+
+ private:
+  struct JointCommands;
+  void track(const MotionInput& input, DriverStatus& status);
+  JointCommands joint_commands(const MotionInput& input, const RuntimeSettings& settings,
+                               DriverStatus& status);
+  MotorVector ramp_driving(const MotionInput& input, const RuntimeSettings& settings,
+                           DriverStatus& status);
+  MotorVector to_duty(const MotorVector& w_hat, const MotionInput& input) const;
+
+  const Params* params_;
+  adaptation::MotorCurve curve_;
+  adaptation::RoverBacklashTracker backlash_;
+  adaptation::NoLoadEstimator estimator_;
+  mobility::GaitSequencer gait_;
+  mobility::DrivingIntent intent_ = mobility::DrivingIntent::kForward;
+  behaviour::Vector3 gravity_ = behaviour::kInitialGravityDirection;
+  behaviour::AxlePlacementState front_placement_;
+  behaviour::AxlePlacementState rear_placement_;
+  std::array<double, 3> drive_velocity_{};  // v1, v2, v4 after (4.14)
+  // v6, v7: the joints' velocity states of (4.13), i.e. the ŵ6(t), ŵ7(t) assigned to the joint
+  // motors (chapter 4.4). The measured joint velocity cannot serve: it is 0 while a shaft
+  // crosses its backlash gap, and the law would never leave the gap.
+  std::array<double, 2> joint_velocity_{};
+  MotorVector last_w_hat_{};
+  MotorVector last_duty_{};
+  MotorVector load_{};
+};
+
+}  // namespace marsokhod::driver

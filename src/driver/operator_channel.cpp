@@ -1,0 +1,79 @@
+#include "driver/operator_channel.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace marsokhod::driver {
+namespace {
+
+std::optional<std::string> check_speed(const char* name, double value, double limit) {
+  if (!std::isfinite(value)) return std::string(name) + " is not a finite number";
+  if (std::abs(value) > limit) {
+    return std::string(name) + " = " + std::to_string(value) + " is out of range; allowed ±" +
+           std::to_string(limit);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+OperatorChannel::OperatorChannel(const Params& params) : params_(&params) {}
+
+std::optional<std::string> OperatorChannel::check_targets(const mobility::OperatorTargets& t) const {
+  const OperatorParams& o = params_->operator_input;
+  const double w = params_->motors.max_no_load_speed_radps;
+  if (auto e = check_speed("v1", t.v1_radps, o.max_drive_speed_radps)) return e;
+  if (auto e = check_speed("v2", t.v2_radps, o.max_spin_speed_radps)) return e;
+  if (auto e = check_speed("v4", t.v4_radps, o.max_trench_speed_radps)) return e;
+  if (auto e = check_speed("v6", t.v6_radps, w)) return e;
+  if (auto e = check_speed("v7", t.v7_radps, w)) return e;
+  if (auto e = check_speed("gait_speed", t.gait_speed, 1.0)) return e;
+  return std::nullopt;
+}
+
+std::optional<std::string> OperatorChannel::receive(const OperatorInput& input, double time_s) {
+  mobility::OperatorTargets next = current_;
+  if (input.gamepad.has_value() == input.targets.has_value() && !input.stop) {
+    last_rejection_ = "an operator input carries either a gamepad reading or targets";
+    return last_rejection_;
+  }
+  if (input.gamepad) {
+    try {
+      next = mobility::map_gamepad(*input.gamepad, params_->operator_input, memory_);
+    } catch (const std::invalid_argument& e) {
+      last_rejection_ = e.what();
+      return last_rejection_;
+    }
+  } else if (input.targets) {
+    if (auto e = check_targets(*input.targets)) {
+      last_rejection_ = *e;
+      return last_rejection_;
+    }
+    next = *input.targets;
+    next.memory = memory_;
+  }
+  memory_ = next.memory;
+  current_ = next;
+  stopped_ = input.stop;
+  last_valid_s_ = time_s;
+  return std::nullopt;
+}
+
+bool OperatorChannel::timed_out(double time_s) const {
+  return !last_valid_s_ || time_s - *last_valid_s_ > params_->safety.operator_timeout_s;
+}
+
+mobility::OperatorTargets OperatorChannel::targets(double time_s) const {
+  if (stopped_ || timed_out(time_s)) {
+    mobility::OperatorTargets zero;
+    zero.gait = current_.gait;  // the gait stays selected; its speed is zero
+    // Calibration mode stays too (with no button held): leaving it resets the joint positions,
+    // which only the operator may ask for.
+    zero.calibration_mode = current_.calibration_mode;
+    zero.memory = memory_;
+    return zero;
+  }
+  return current_;
+}
+
+}  // namespace marsokhod::driver

@@ -1,0 +1,56 @@
+// The start-up sequence of the driver, before any driving:
+//   1. configure every motor controller: 0xi2 with icr (511), pwm = 0 and con, repeated each
+//      cycle until µi answers 0xi3 (icr changes only while pwm = 0, chapter 3.2);
+//   2. enable µ8's dead man's switch: 0x82 with dog, repeated until 0x83;
+//   3. Procedure 4.3: both joint motors at d = −calibration_duty until each shaft has travelled
+//      its backlash b_i toward the negative end (at most 3 s), then at rest until both shafts
+//      have stopped, then the joint positions are set to Remark 3.1's p̄⁰ = p⁰ (−1.2121,
+//      +1.2121) — set after the stop, so that no coasting is left to shift them;
+//   4. driving.
+// Pure: the phase advances on the responses it is shown and on time given as a value.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "core/params.hpp"
+
+namespace marsokhod::driver {
+
+enum class StartupPhase : std::uint8_t { kConfigure, kEnableDeadMan, kCalibrate, kDone };
+std::string_view phase_name(StartupPhase phase);
+
+inline constexpr double kCalibrationTimeout_s = 3.0;  // Procedure 4.3: "in no more than 3 s"
+inline constexpr double kShaftStoppedRadps = 0.005;   // a shaft this slow has stopped
+
+class Startup {
+ public:
+  explicit Startup(const Params& params);
+
+  StartupPhase phase() const { return phase_; }
+  bool configured(std::size_t motor) const { return configured_.at(motor); }
+
+  // Phase 1: the controllers that answered 0xi3 this cycle.
+  void on_configured(std::size_t motor);
+  // Phase 2: µ8 answered 0x83.
+  void on_dead_man_acknowledged();
+  // Phase 3, every cycle: the measured shaft positions p̄6, p̄7 and speeds w̄6, w̄7 at time t.
+  // Returns the joint duty cycles to apply (0 once a joint has travelled its gap). Starts timing
+  // on the first call.
+  std::array<double, 2> calibrate(double time_s, const std::array<double, 2>& shaft_rad,
+                                  const std::array<double, 2>& shaft_speed_radps);
+
+ private:
+  void advance();
+
+  const Params* params_;
+  StartupPhase phase_ = StartupPhase::kConfigure;
+  std::array<bool, kMotorCount> configured_{};
+  bool calibration_started_ = false;
+  double calibration_start_s_ = 0.0;
+  std::array<double, 2> shaft_start_rad_{};
+  std::array<bool, 2> gap_closed_{};
+};
+
+}  // namespace marsokhod::driver

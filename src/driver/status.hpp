@@ -1,0 +1,80 @@
+// Everything the thesis' status window shows (Figure 8.1) and what our driver adds: the driver's
+// output besides the CAN requests, published every cycle to the console, logs and scenarios.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/mobility/gait_table.hpp"
+#include "core/params.hpp"
+#include "driver/frame_intake.hpp"
+#include "driver/startup.hpp"
+
+namespace marsokhod::driver {
+
+enum class DriverMode : std::uint8_t {
+  kStartup,      // configuring the controllers, µ8's switch, Procedure 4.3
+  kDriving,      // normal operation (also while stopped by the operator or the timeout)
+  kCalibration,  // the operator's calibration mode (Remark 5.7)
+  kFault,        // a latched fault stopped the rover
+};
+const char* mode_name(DriverMode mode);
+
+struct MotorStatus {
+  double shaft_position_rad = 0.0;  // p̄ (chapter 3.2)
+  double position_rad = 0.0;        // p, after backlash (4.1)
+  double velocity_radps = 0.0;      // w (4.2)
+  double no_load_velocity_radps = 0.0;  // ν (4.4)
+  double load_radps = 0.0;          // l = w − ν (Definition 4.9)
+  double commanded_radps = 0.0;     // ŵ of (5.4) after κ and h
+  double duty = 0.0;                // d sent this cycle
+  int silent_cycles = 0;            // consecutive cycles without a response
+};
+
+struct JointBoundsStatus {
+  double front_min_rad = 0.0, front_max_rad = 0.0, rear_min_rad = 0.0, rear_max_rad = 0.0;
+};
+
+struct TargetStatus {
+  double v1_radps = 0.0, v2_radps = 0.0, v4_radps = 0.0, v6_radps = 0.0, v7_radps = 0.0;
+};
+
+struct DriverStatus {
+  double mission_time_s = 0.0;
+  double cycle_time_s = 0.0;       // since the previous step
+  std::uint64_t cycle = 0;
+  DriverMode mode = DriverMode::kStartup;
+  StartupPhase startup_phase = StartupPhase::kConfigure;
+  // Chapter 3.3.
+  double supply_v = 0.0;
+  double reference_supply_v = 0.0;  // Ū
+  double yaw_rate_radps = 0.0;
+  std::array<double, 3> accel_mps2{};
+  double front_tilt_rad = 0.0, rear_tilt_rad = 0.0;
+  double slope_rad = 0.0;           // σ, chapter 6.2.1
+  std::array<MotorStatus, kMotorCount> motors{};
+  int sensor_silent_cycles = 0;     // µ8
+  // Chapters 5 and 6.
+  double max_duty = 1.0;            // D of (6.3)
+  double driving_scale = 1.0;       // κ of (5.5)
+  double walking_scale = 1.0;
+  TargetStatus targets;             // what the operator asks (after the timeout rule)
+  TargetStatus commands;            // v1…v7 after (4.14)–(4.16) and the behaviours
+  mobility::Gait gait = mobility::Gait::kNone;
+  std::size_t gait_state = 0;
+  double gait_speed = 0.0;
+  double front_axle_factor = 0.0;   // ρf
+  double rear_axle_factor = 0.0;    // ρr
+  JointBoundsStatus joint_bounds;
+  // Safety.
+  bool operator_timeout = true;
+  std::string operator_rejection;   // the latest invalid operator input's reason
+  std::vector<std::string> faults;  // latched faults, e.g. "µ3 silent for 3 cycles"
+  std::vector<std::string> warnings;  // not latched, e.g. "supply 19.8 V near brown-out"
+  BusCounters bus;
+  std::string lcd;                  // the 8 characters sent to µ8
+};
+
+}  // namespace marsokhod::driver
