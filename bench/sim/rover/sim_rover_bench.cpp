@@ -1,0 +1,38 @@
+// The whole simulated rover (physics + electrics + firmware + bus) per simulated second while a
+// driver's full cycle of traffic runs at 64 Hz, against bare mj_step on the same model
+// (sim_physics_bench BM_BareMjStep). real_time_factor = simulated seconds per wall second.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "core/protocol/codec.hpp"
+#include "sim/rover/simulated_rover.hpp"
+
+namespace marsokhod::sim {
+namespace {
+
+void BM_SimulatedRoverSecond(benchmark::State& state) {
+  const Params params;
+  SimOptions options;
+  SimulatedRover rover(params, options);
+  for (std::uint8_t i = 0; i < 8; ++i) {
+    rover.send(protocol::encode(protocol::ConfigurationRequest{i, 511, 0, 0}), 0.0);
+  }
+  double t = 0.0;
+  for (auto _ : state) {
+    for (int k = 0; k < 64; ++k) {  // one simulated second
+      for (std::uint8_t i = 0; i < 8; ++i) {
+        rover.send(protocol::encode(protocol::ControlRequest{i, false, true, 200}), t);
+      }
+      rover.send(protocol::encode(protocol::MeasurementRequest{}), t);
+      t += 1.0 / 64.0;
+      benchmark::DoNotOptimize(rover.advance_to(t));
+    }
+  }
+  state.counters["real_time_factor"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_SimulatedRoverSecond)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace marsokhod::sim

@@ -1,0 +1,88 @@
+// The simulated rover as the driver meets it: CAN frames in, CAN frames out, with the bus'
+// timing, and nothing else. Inside, every physics step (1 ms):
+//   firmware (µ0–µ8 see the shaft angles, the IMU and the supply) → duty cycles
+//   → electrics (motors' no-load speed, droop, stall; supply voltage, brown-out)
+//   → physics (MuJoCo: chassis, joints with backlash, wheels on the terrain) → shaft angles.
+// The loop closes through one physics step of delay, as a real controller samples its inputs.
+// Ground truth and fault switches are a C++ API for tests, scenarios and the console's 3-D view,
+// never on the bus. Deterministic: the same options and seed give the same frames, bit for bit.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/params.hpp"
+#include "core/protocol/can_frame.hpp"
+#include "sim/electrics/rover_electrics.hpp"
+#include "sim/electrics/sim_truth.hpp"
+#include "sim/firmware/rover_firmware.hpp"
+#include "sim/physics/rover_physics.hpp"
+#include "sim/physics/terrain.hpp"
+
+namespace marsokhod::sim {
+
+struct SimOptions {
+  std::uint64_t seed = 1;
+  TerrainSpec terrain = TerrainSpec{};
+  double physics_timestep_s = 0.001;
+  bool nominal_unit = false;  // true: the configured ζ, ±g table … (exact_sim_truth), else drawn
+  SupplyKind supply = SupplyKind::kBattery;
+};
+
+// A frame the rover's controllers put on the bus, and when the driver side has it.
+struct TimedFrame {
+  double time_s = 0.0;
+  protocol::CanFrame frame;
+};
+
+// Faults of the issue, each switchable at run time.
+struct SimFaults {
+  std::array<bool, kWheelCount> wheel_blocked{};     // a rigid wheel (Field Experiment 6.2)
+  std::array<bool, kWheelCount> wheel_no_contact{};  // a wheel without ground contact
+  std::array<double, kMotorCount> lost_pulse_fraction{};  // a loose encoder connection
+  std::array<bool, kMotorCount + 1> silent{};        // µ0–µ8 never answer
+  double frame_loss_probability = 0.0;
+  double extra_series_resistance_ohm = 0.0;          // battery sag
+};
+
+class SimulatedRover {
+ public:
+  SimulatedRover(const Params& nominal, const SimOptions& options);
+
+  // A frame from the driver side, put on the bus at time_s (≥ the rover's time).
+  void send(const protocol::CanFrame& frame, double time_s);
+  // Runs the rover to time_s and returns the frames its controllers delivered since the last
+  // call, in bus order. While the onboard computer is browned out the driver side is down: the
+  // caller should neither step the driver nor send (see computer_on()).
+  std::vector<TimedFrame> advance_to(double time_s);
+
+  double time_s() const;
+  bool computer_on() const { return electrics_.output().computer_on; }
+  const ElectricsOutput& electrics() const { return electrics_.output(); }
+  GroundTruth truth() const { return physics_.truth(); }
+  ImuTruth imu() const { return physics_.imu(); }
+  const RoverFirmware& firmware() const { return firmware_; }
+  const SimTruth& sim_truth() const { return truth_; }
+  double energy_used_j() const { return energy_j_; }
+  std::uint64_t physics_steps() const { return steps_; }
+
+  const SimFaults& faults() const { return faults_; }
+  void set_faults(const SimFaults& faults);  // throws std::invalid_argument for a bad value
+  void force_brownout() { electrics_.force_brownout(); }
+
+ private:
+  SensorTruthSample sensor_sample() const;
+  void physics_step();
+
+  const Params* params_;
+  SimTruth truth_;
+  RoverPhysics physics_;
+  RoverElectrics electrics_;
+  RoverFirmware firmware_;
+  SimFaults faults_;
+  double energy_j_ = 0.0;
+  std::uint64_t steps_ = 0;
+};
+
+}  // namespace marsokhod::sim
