@@ -46,6 +46,10 @@ SimulatedRover::SimulatedRover(const Params& nominal, const SimOptions& options)
 double SimulatedRover::time_s() const { return physics_.time_s(); }
 
 void SimulatedRover::send(const protocol::CanFrame& frame, double time_s) {
+  if (!computer_on()) {
+    ++dropped_;
+    return;
+  }
   firmware_.send(frame, std::max(seconds_to_ns(time_s), firmware_.time_ns()));
 }
 
@@ -72,6 +76,7 @@ std::vector<TimedFrame> SimulatedRover::advance_to(double time_s) {
   const SimTimeNs step_ns = seconds_to_ns(physics_.timestep_s());
   std::vector<TimedFrame> out;
   auto collect = [&](const std::vector<BusDelivery>& deliveries) {
+    if (!computer_on()) return;  // the onboard computer is down: nobody receives
     for (const BusDelivery& d : deliveries) out.push_back({ns_to_seconds(d.delivery_ns), d.frame});
   };
   // Each physics step starts with the controllers seeing the state at its beginning.

@@ -50,12 +50,16 @@ class SimulatedRover {
  public:
   SimulatedRover(const Params& nominal, const SimOptions& options);
 
-  // A frame from the driver side, put on the bus at time_s (≥ the rover's time).
+  // A frame from the driver side, put on the bus at time_s (≥ the rover's time). While the
+  // onboard computer is browned out (below 19.5 V, for the reboot time) nothing it sends reaches
+  // the bus: the frame is dropped and counted.
   void send(const protocol::CanFrame& frame, double time_s);
   // Runs the rover to time_s and returns the frames its controllers delivered since the last
-  // call, in bus order. While the onboard computer is browned out the driver side is down: the
-  // caller should neither step the driver nor send (see computer_on()).
+  // call, in bus order — none while the onboard computer is down: the bus stops answering the
+  // driver, and µ8's dead man's switch, no longer fed, stops the motors.
   std::vector<TimedFrame> advance_to(double time_s);
+  std::uint64_t frames_dropped_during_brownout() const { return dropped_; }
+  MotorVector shaft_torque_nm() const { return physics_.shaft_torque_nm(); }  // per motor
 
   double time_s() const;
   bool computer_on() const { return electrics_.output().computer_on; }
@@ -82,6 +86,7 @@ class SimulatedRover {
   RoverFirmware firmware_;
   SimFaults faults_;
   double energy_j_ = 0.0;
+  std::uint64_t dropped_ = 0;
   std::uint64_t steps_ = 0;
 };
 

@@ -193,6 +193,23 @@ TEST(SimulatedRover, JointCompensationSlipsTheWheelsFarLess) {
   EXPECT_LT(with, 0.5 * without) << "with " << with << " m/rad, without " << without << " m/rad";
 }
 
+TEST(SimulatedRover, BrownOutSilencesTheBusAndTheDeadMansSwitchStops) {
+  Bench bench;
+  bench.rover.send(protocol::encode(protocol::DeadManRequest{4}), bench.t);
+  bench.run(64, wheels(0.4));
+  const int before = bench.frames;
+  bench.rover.force_brownout();
+  bench.run(128, wheels(0.4));  // 2 s: more than 0.262144·4 s
+  EXPECT_FALSE(bench.rover.computer_on());
+  EXPECT_EQ(bench.frames, before);  // nothing reached the driver side
+  EXPECT_GT(bench.rover.frames_dropped_during_brownout(), 0u);
+  for (std::size_t i = 0; i < kMotorCount; ++i) EXPECT_EQ(bench.rover.firmware().duty()[i], 0.0);
+  // After the reboot time (30 s) the computer is back and the bus answers again.
+  bench.run(static_cast<int>(30.0 / kH), wheels(0.0));
+  EXPECT_TRUE(bench.rover.computer_on());
+  EXPECT_GT(bench.frames, before);
+}
+
 TEST(SimulatedRover, TwoRunsWithOneSeedAreIdentical) {
   auto run = [] {
     SimOptions options;
