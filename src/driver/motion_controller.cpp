@@ -10,6 +10,7 @@
 #include "core/behaviour/power_management.hpp"
 #include "core/behaviour/slant_response.hpp"
 #include "core/control/bounded_velocity_control.hpp"
+#include "core/control/position_control.hpp"
 #include "core/control/velocity_control.hpp"
 #include "core/mobility/elementary_motion.hpp"
 #include "core/mobility/joint_compensation.hpp"
@@ -157,10 +158,19 @@ MotionController::JointCommands MotionController::joint_commands(const MotionInp
       input.targets.v2_radps * settings.speed_scale, w_max, std::max(n6, 1e-9),
       std::max(n7, 1e-9), settings.switches);
   const JointBoundsStatus& b = status.joint_bounds;
-  const double c6 = control::bounded_velocity_control(
-      front, std::clamp(targets.front_radps, -limit, limit), b.front_min_rad, b.front_max_rad, joint);
-  const double c7 = control::bounded_velocity_control(
-      rear, std::clamp(targets.rear_radps, -limit, limit), b.rear_min_rad, b.rear_max_rad, joint);
+  // A position target (Procedure 4.17) is reached with (4.15), inside the bounds (6.4).
+  const auto& p6d = input.targets.front_joint_target_rad;
+  const auto& p7d = input.targets.rear_joint_target_rad;
+  const double c6 =
+      p6d ? control::position_velocity_control(
+                front, {std::clamp(*p6d, b.front_min_rad, b.front_max_rad), 0.0}, joint)
+          : control::bounded_velocity_control(front, std::clamp(targets.front_radps, -limit, limit),
+                                              b.front_min_rad, b.front_max_rad, joint);
+  const double c7 =
+      p7d ? control::position_velocity_control(
+                rear, {std::clamp(*p7d, b.rear_min_rad, b.rear_max_rad), 0.0}, joint)
+          : control::bounded_velocity_control(rear, std::clamp(targets.rear_radps, -limit, limit),
+                                              b.rear_min_rad, b.rear_max_rad, joint);
   out.front_radps = control::step(front, c6, joint).velocity;
   out.rear_radps = control::step(rear, c7, joint).velocity;
   out.factors.front = mobility::front_axle_factor(

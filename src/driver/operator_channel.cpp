@@ -15,6 +15,17 @@ std::optional<std::string> check_speed(const char* name, double value, double li
   return std::nullopt;
 }
 
+std::optional<std::string> check_position(const char* name, const std::optional<double>& value,
+                                          double min, double max) {
+  if (!value) return std::nullopt;
+  if (!std::isfinite(*value)) return std::string(name) + " is not a finite number";
+  if (*value < min || *value > max) {
+    return std::string(name) + " = " + std::to_string(*value) + " rad is out of range; allowed [" +
+           std::to_string(min) + ", " + std::to_string(max) + "] (5.3)";
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 OperatorChannel::OperatorChannel(const Params& params) : params_(&params) {}
@@ -28,7 +39,13 @@ std::optional<std::string> OperatorChannel::check_targets(const mobility::Operat
   if (auto e = check_speed("v6", t.v6_radps, w)) return e;
   if (auto e = check_speed("v7", t.v7_radps, w)) return e;
   if (auto e = check_speed("gait_speed", t.gait_speed, 1.0)) return e;
-  return std::nullopt;
+  const JointParams& j = params_->joints;
+  if (auto e = check_position("front_joint_target", t.front_joint_target_rad, j.front_min_rad,
+                              j.front_max_rad)) {
+    return e;
+  }
+  return check_position("rear_joint_target", t.rear_joint_target_rad, j.rear_min_rad,
+                        j.rear_max_rad);
 }
 
 std::optional<std::string> OperatorChannel::receive(const OperatorInput& input, double time_s) {

@@ -302,3 +302,33 @@ TEST_F(SpinDriverTest, RolkingRunsThroughItsStatesWithinTheJointBounds) {
 
 }  // namespace
 }  // namespace marsokhod::driver
+
+namespace marsokhod::driver {
+namespace {
+
+TEST_F(SpinDriverTest, JointPositionTargetsAreReachedLikeProcedure417) {
+  // Procedure 4.17's front sequence, each target held to 0.05 rad (μ = 0.4, C = w/2). The last,
+  // −1.21, lies 0.0021 rad beyond (5.3)'s −acos(a/b): the driver refuses it, so it is sent as the
+  // bound.
+  start_up();
+  for (double printed : {-2.21, -2.51, -1.61, -1.81, -1.21}) {
+    const double target = std::clamp(printed, params.joints.front_min_rad, params.joints.front_max_rad);
+    OperatorInput go = targets(0.0);
+    go.targets->front_joint_target_rad = target;
+    go.targets->rear_joint_target_rad = 2.21;
+    int held = 0;
+    for (int k = 0; k < 1500 && held < 64; ++k) {
+      cycle(&go);
+      held = std::abs(driver.status().motors[kFrontJoint].position_rad - target) <= 0.05 ? held + 1 : 0;
+    }
+    EXPECT_EQ(held, 64) << "target " << target;
+  }
+  EXPECT_NEAR(driver.status().motors[kRearJoint].position_rad, 2.21, 0.05);
+  OperatorInput bad = targets(0.0);
+  bad.targets->front_joint_target_rad = -3.0;  // beyond (5.3)
+  cycle(&bad);
+  EXPECT_NE(driver.status().operator_rejection.find("front_joint_target"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace marsokhod::driver

@@ -23,6 +23,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 
 #include "core/mobility/gait_table.hpp"
 #include "core/params.hpp"
@@ -90,6 +91,10 @@ struct OperatorTargets {
   bool calibration_mode = false;
   JointButtons joint_buttons;
   GamepadMemory memory;  // pass to the next call of map_gamepad
+  // Joint positions to reach with (4.15) (Procedure 4.17), used instead of v6/v7 while no gait
+  // runs. Never set by the gamepad: consoles, scenarios and calibration send them.
+  std::optional<double> front_joint_target_rad{};  // p6ᵈ
+  std::optional<double> rear_joint_target_rad{};   // p7ᵈ
 };
 
 // The dead zone above for one axis value. Throws std::invalid_argument naming `axis_name` if the
