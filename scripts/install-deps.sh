@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev libspdlog-dev nlohmann-json3-dev
-  libmujoco-dev
+  libmujoco-dev gnuplot-nox
   clang libclang-rt-14-dev
 )
 

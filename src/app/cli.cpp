@@ -8,6 +8,7 @@
 #include <ostream>
 
 #include "app/decode_command.hpp"
+#include "app/scenario_command.hpp"
 #include "config/load_params.hpp"
 
 namespace marsokhod::app {
@@ -63,6 +64,23 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
       ->required();
   decode_cmd->add_flag("--json", decode.json, "print one JSON object a line");
 
+  ScenarioArgs scenario;
+  CLI::App* scenario_cmd = cli.add_subcommand(
+      "scenario", "run a scenario headless, faster than real time, and check its results");
+  scenario_cmd->add_option("NAME", scenario.name, "a shipped scenario's name, or a scenario file");
+  std::uint64_t seed = 0;
+  CLI::Option* seed_option = scenario_cmd->add_option("--seed", seed, "the simulator's seed");
+  scenario_cmd->add_option("--out", scenario.out,
+                           "write can.log, operator.jsonl, telemetry.csv and plots here");
+  scenario_cmd->add_flag("--json", scenario.json, "print one JSON object");
+  scenario_cmd->add_flag("--list", scenario.list, "name the shipped scenarios");
+  scenario_cmd->add_flag("--no-plots", scenario.no_plots, "skip the gnuplot PNGs");
+
+  std::string replay_dir;
+  CLI::App* replay_cmd = cli.add_subcommand(
+      "replay", "re-run the driver over a recording and compare every request, bit for bit");
+  replay_cmd->add_option("DIR", replay_dir, "a scenario's --out folder")->required();
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -89,6 +107,11 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     return kUsageError;
   }
   if (decode_cmd->parsed()) return run_decode(decode, params, in, out, err);
+  if (scenario_cmd->parsed()) {
+    if (seed_option->count() > 0) scenario.seed = seed;
+    return run_scenario_command(scenario, params, *config_path, out, err);
+  }
+  if (replay_cmd->parsed()) return run_replay_command(replay_dir, params, out, err);
   return kUsageError;
 }
 

@@ -183,6 +183,7 @@ BehaviourParams read_behaviours(ConfigReader r) {
   b.slant_response = r.boolean("slant_response");
   b.contract_on_turn = r.boolean("contract_on_turn");
   b.axle_placement = r.boolean("axle_placement");
+  b.slant_deadband_rad = r.number("slant_deadband_rad", 0.0, 0.5);
   b.axle_placement_load_radps = r.number("axle_placement_load_radps", 0.0, 100.0);
   b.axle_placement_speed_radps = r.number("axle_placement_speed_radps", 0.0, 100.0);
   b.axle_placement_rate_per_s = r.number("axle_placement_rate_per_s", 0.0, 1000.0);

@@ -116,7 +116,7 @@ struct LoadDistributionParams {
 struct FilterParams {
   double gyro_null_lambda = 0.99;          // null-rate y, (3.4)
   double reference_voltage_lambda = 0.99;  // Ū sequence, Procedure 3.5
-  double gravity_lambda = 0.95;            // g, chapter 6.2.1
+  double gravity_lambda = 0.99;            // g, chapter 6.2.1
 };
 
 // An affine conversion physical = gain·counts + offset.
@@ -167,6 +167,7 @@ struct BehaviourParams {
   bool slant_response = true;              // 6.2.1
   bool contract_on_turn = true;            // 6.2.2
   bool axle_placement = true;              // 6.2.3
+  double slant_deadband_rad = 0.05;        // |σ| below this counts as flat (sensor noise, bumps)
   double axle_placement_load_radps = 0.5;  // |l6|, |l7| above this: the joint is blocked
   double axle_placement_speed_radps = 0.1; // joint slower than this: switch ρ → 1 − ρ at once
   double axle_placement_rate_per_s = 1.0;  // faster: move ρ toward 1 − ρ at this rate

@@ -207,8 +207,12 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   status.slope_rad = behaviour::terrain_slope_rad(
       gravity_, mobility::front_lever(p6, params_->geometry).inclination_rad,
       mobility::rear_lever(p7, params_->geometry).inclination_rad);
-  const behaviour::JointBounds bounds = behaviour::slant_joint_bounds(
-      status.slope_rad, params_->joints, params_->geometry, settings.switches);
+  // Slopes within the dead band count as flat: noise and bumps must not move the joints. Beyond
+  // it γ(σ) applies unchanged; (4.16) smooths the step of the bound at the threshold.
+  const double slope =
+      std::abs(status.slope_rad) < params_->behaviours.slant_deadband_rad ? 0.0 : status.slope_rad;
+  const behaviour::JointBounds bounds =
+      behaviour::slant_joint_bounds(slope, params_->joints, params_->geometry, settings.switches);
   status.joint_bounds = {bounds.front_min_rad, bounds.front_max_rad, bounds.rear_min_rad,
                          bounds.rear_max_rad};
   // Remark 5.5, then the motions of (5.4).

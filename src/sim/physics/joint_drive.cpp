@@ -8,6 +8,10 @@ namespace {
 // The simulated gap's ends are soft constraints: a shaft resting on an end may sit this much
 // short of it and still bears on it.
 constexpr double kGapEndToleranceRad = 1e-6;
+// A motor whose no-load speed has decayed below this is not pushing any more: with d = 0 the
+// electrics' first-order lag only approaches 0, and without this floor the joint would stay
+// coupled to a barely driven shaft and be back-driven by the wheels' forces.
+constexpr double kPushingSpeedRadps = 1e-3;
 
 }  // namespace
 
@@ -25,13 +29,13 @@ bool JointDrive::update(double shaft_rad, double joint_rad, double no_load_speed
   const double gap_rad = shaft_rad - joint_rad;
   switch (mode_) {
     case JointMode::kPushingUp:
-      if (no_load_speed_radps > 0.0) {
+      if (no_load_speed_radps > kPushingSpeedRadps) {
         held_angle_rad_ = std::max(held_angle_rad_, joint_rad);
         return false;
       }
       break;
     case JointMode::kPushingDown:
-      if (no_load_speed_radps < 0.0) {
+      if (no_load_speed_radps < -kPushingSpeedRadps) {
         held_angle_rad_ = std::min(held_angle_rad_, joint_rad);
         return false;
       }
@@ -43,9 +47,9 @@ bool JointDrive::update(double shaft_rad, double joint_rad, double no_load_speed
   // shaft is already bearing on the end it is commanded toward.
   if (mode_ != JointMode::kLocked) held_angle_rad_ = joint_rad;
   mode_ = JointMode::kLocked;
-  if (no_load_speed_radps > 0.0 && gap_rad >= backlash_rad_ - kGapEndToleranceRad) {
+  if (no_load_speed_radps > kPushingSpeedRadps && gap_rad >= backlash_rad_ - kGapEndToleranceRad) {
     mode_ = JointMode::kPushingUp;
-  } else if (no_load_speed_radps < 0.0 && gap_rad <= kGapEndToleranceRad) {
+  } else if (no_load_speed_radps < -kPushingSpeedRadps && gap_rad <= kGapEndToleranceRad) {
     mode_ = JointMode::kPushingDown;
   }
   if (mode_ != JointMode::kLocked) held_angle_rad_ = joint_rad;

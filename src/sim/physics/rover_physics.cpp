@@ -104,8 +104,9 @@ void RoverPhysics::Impl::resolve_ids() {
   ids.accelerometer = m.sensor_adr[require_id(m, mjOBJ_SENSOR, kAccelerometerName)];
 }
 
-// Procedure 4.3: each joint starts locked at the shaft's initial angle, the shaft at the gap's
-// lower end.
+// Each joint starts locked at its initial angle (Remark 3.1: vertical) with the shaft at the
+// gap's upper end, so that Procedure 4.3's push toward the negative end crosses the whole gap
+// before it could move the joint (the thesis' premise: the joint stays vertical).
 void RoverPhysics::Impl::start_joints() {
   for (std::size_t slot = 0; slot < 2; ++slot) {
     for (int side = 0; side < 2; ++side) {
@@ -113,7 +114,8 @@ void RoverPhysics::Impl::start_joints() {
       shaft_stops_rad[slot][side] = model->jnt_range[2 * ids.shaft_hinge[slot] + side];
     }
     data->qpos[ids.joint_qpos[slot]] = joints[slot].held_angle_rad();
-    data->qpos[ids.shaft_qpos[kJointMotors[slot]]] = joints[slot].held_angle_rad();
+    data->qpos[ids.shaft_qpos[kJointMotors[slot]]] =
+        joints[slot].held_angle_rad() + joints[slot].backlash_rad();
     apply_joint_mode(slot);
   }
 }

@@ -31,14 +31,20 @@ void require_fraction(double value, const std::string& name) {
   }
 }
 
+Params with_shaft_angles(Params params, const MotorVector& shaft_angle_rad) {
+  params.motors.initial_position_rad = shaft_angle_rad;
+  return params;
+}
+
 }  // namespace
 
 SimulatedRover::SimulatedRover(const Params& nominal, const SimOptions& options)
     : params_(&nominal),
       truth_(truth_for(nominal, options)),
       physics_(nominal, options.terrain, options.physics_timestep_s),
+      firmware_params_(with_shaft_angles(nominal, physics_.shaft_angle_rad())),
       electrics_(truth_),
-      firmware_(nominal, truth_, options.seed,
+      firmware_(firmware_params_, truth_, options.seed,
                 sample_of(physics_.imu(), electrics_.output().supply_v > 0.0
                                               ? electrics_.output().supply_v
                                               : nominal.motors.nominal_supply_v)) {}

@@ -74,6 +74,10 @@ class SimulatedRover {
   const SimFaults& faults() const { return faults_; }
   void set_faults(const SimFaults& faults);  // throws std::invalid_argument for a bad value
   void force_brownout() { electrics_.force_brownout(); }
+  // A battery emptier than new (ignored on the tether); throws std::invalid_argument.
+  void set_state_of_charge(double state_of_charge) {
+    electrics_.set_state_of_charge(state_of_charge);
+  }
 
  private:
   SensorTruthSample sensor_sample() const;
@@ -82,6 +86,7 @@ class SimulatedRover {
   const Params* params_;
   SimTruth truth_;
   RoverPhysics physics_;
+  Params firmware_params_;  // the encoders count from the physics' initial shaft angles
   RoverElectrics electrics_;
   RoverFirmware firmware_;
   SimFaults faults_;

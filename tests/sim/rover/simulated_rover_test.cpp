@@ -210,6 +210,19 @@ TEST(SimulatedRover, BrownOutSilencesTheBusAndTheDeadMansSwitchStops) {
   EXPECT_GT(bench.frames, before);
 }
 
+TEST(SimulatedRover, AJointPushedAndReleasedHoldsWhileTheWheelsDrive) {
+  // Not back-drivable (chapter 5.3's lock): after the front joint motor pushed and stopped, the
+  // wheels' forces while driving must not move the joint.
+  Bench bench;
+  MotorVector push{};
+  push[kFrontJoint] = -0.08;
+  bench.run(100, push);
+  bench.run(20, wheels(0.0));
+  const double held = bench.rover.truth().joint_angle_rad[kFrontJoint];
+  bench.run(250, wheels(0.5));
+  EXPECT_NEAR(bench.rover.truth().joint_angle_rad[kFrontJoint], held, 0.002);
+}
+
 TEST(SimulatedRover, TwoRunsWithOneSeedAreIdentical) {
   auto run = [] {
     SimOptions options;

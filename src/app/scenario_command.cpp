@@ -1,0 +1,135 @@
+#include "app/scenario_command.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <ostream>
+#include <set>
+
+#include "config/load_params.hpp"
+#include "runner/replay.hpp"
+#include "runner/scenario_runner.hpp"
+
+namespace marsokhod::app {
+namespace {
+
+constexpr int kUsageError = 2;
+
+std::optional<std::filesystem::path> find_scenario(const std::string& name) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(name, ec)) return std::filesystem::path(name);
+  for (const auto& folder : scenario_folders()) {
+    const auto file = folder / (name + ".toml");
+    if (std::filesystem::is_regular_file(file, ec)) return file;
+  }
+  return std::nullopt;
+}
+
+void print_text(const runner::ScenarioResult& r, std::ostream& out) {
+  char line[256];
+  std::snprintf(line, sizeof line, "scenario %s  seed %llu  %.2f s simulated in %.2f s (%.1f× real time)\n",
+                r.scenario.c_str(), static_cast<unsigned long long>(r.seed), r.sim_time_s,
+                r.wall_time_s, r.real_time_factor);
+  out << line << "metrics:\n";
+  for (const auto& [name, value] : r.metrics) {
+    std::snprintf(line, sizeof line, "  %-28s %12.4f\n", name.c_str(), value);
+    out << line;
+  }
+  out << "checks:\n";
+  for (const auto& c : r.checks) {
+    std::snprintf(line, sizeof line, "  %s  %-28s %12.4f  %s\n", c.passed ? "PASS" : "FAIL",
+                  c.name.c_str(), c.value, c.limit.c_str());
+    out << line;
+  }
+  for (const auto& note : r.notes) out << "note: " << note << "\n";
+  out << (r.passed ? "passed\n" : "FAILED\n");
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> scenario_folders() {
+  std::vector<std::filesystem::path> folders;
+  if (const char* env = std::getenv("MARSOKHOD_SCENARIOS"); env != nullptr && *env != '\0') {
+    folders.emplace_back(env);
+  }
+  folders.emplace_back("scenarios");
+  folders.emplace_back(std::filesystem::path(MARSOKHOD_SOURCE_DIR) / "scenarios");
+  return folders;
+}
+
+int run_scenario_command(const ScenarioArgs& args, const Params& params,
+                         const std::filesystem::path& config_file, std::ostream& out,
+                         std::ostream& err) {
+  if (args.list) {
+    std::set<std::string> seen;
+    for (const auto& folder : scenario_folders()) {
+      for (const auto& [name, file] : runner::list_scenarios(folder)) {
+        if (!seen.insert(name).second) continue;
+        try {
+          out << name << "  " << runner::load_scenario(file).description << "\n";
+        } catch (const std::exception& e) {
+          out << name << "  (invalid: " << e.what() << ")\n";
+        }
+      }
+    }
+    return 0;
+  }
+  if (args.name.empty()) {
+    err << "marsokhod scenario: name a scenario or a file (marsokhod scenario --list names them)\n";
+    return kUsageError;
+  }
+  const auto file = find_scenario(args.name);
+  if (!file) {
+    err << "marsokhod scenario: no scenario '" << args.name
+        << "': not a file, and not in the scenario folders (marsokhod scenario --list)\n";
+    return kUsageError;
+  }
+  runner::Scenario scenario;
+  try {
+    scenario = runner::load_scenario(*file);
+  } catch (const std::invalid_argument& e) {
+    err << "marsokhod scenario: " << e.what() << "\n";
+    return kUsageError;
+  }
+  runner::RunOptions options;
+  options.seed = args.seed;
+  if (!args.out.empty()) options.out = args.out;
+  options.config_file = config_file;
+  options.plots = !args.no_plots;
+  runner::ScenarioResult result;
+  try {
+    result = runner::run_scenario(scenario, params, options);
+  } catch (const std::exception& e) {
+    err << "marsokhod scenario: " << scenario.name << ": " << e.what() << "\n";
+    return kUsageError;
+  }
+  if (args.json) {
+    out << runner::to_json(result).dump() << "\n";
+  } else {
+    print_text(result, out);
+  }
+  return result.passed ? 0 : 1;
+}
+
+int run_replay_command(const std::string& folder, const Params& params, std::ostream& out,
+                       std::ostream& err) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) {
+    err << "marsokhod replay: '" << folder << "' is not a folder with a recording\n";
+    return kUsageError;
+  }
+  try {
+    Params recorded = params;
+    const auto config = std::filesystem::path(folder) / "config.toml";
+    if (std::filesystem::is_regular_file(config, ec)) recorded = config::load_params(config);
+    const runner::ReplayResult r = runner::replay(folder, recorded);
+    out << "replayed " << r.cycles << " cycles, compared " << r.frames_compared << " requests: "
+        << (r.identical ? "identical to the recording, bit for bit\n" : "DIFFERENT\n");
+    if (!r.identical) out << r.first_difference << "\n";
+    return r.identical ? 0 : 1;
+  } catch (const std::exception& e) {
+    err << "marsokhod replay: " << e.what() << "\n";
+    return kUsageError;
+  }
+}
+
+}  // namespace marsokhod::app

@@ -1,0 +1,37 @@
+// `marsokhod scenario` and `marsokhod replay`.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/params.hpp"
+
+namespace marsokhod::app {
+
+struct ScenarioArgs {
+  std::string name;  // a shipped scenario's name or a file
+  std::optional<std::uint64_t> seed;
+  std::string out;
+  bool json = false;
+  bool list = false;
+  bool no_plots = false;
+};
+
+// The folders searched for NAME.toml: $MARSOKHOD_SCENARIOS, ./scenarios, the source tree's.
+std::vector<std::filesystem::path> scenario_folders();
+
+// 0 when every check passed, 1 when one failed, 2 for a bad argument or scenario file.
+int run_scenario_command(const ScenarioArgs& args, const Params& params,
+                         const std::filesystem::path& config_file, std::ostream& out,
+                         std::ostream& err);
+
+// 0 when the replay is identical to the recording, 1 when it differs, 2 when it cannot be read.
+// The recording's own config.toml is used when it has one.
+int run_replay_command(const std::string& folder, const Params& params, std::ostream& out,
+                       std::ostream& err);
+
+}  // namespace marsokhod::app

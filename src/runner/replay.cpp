@@ -1,0 +1,103 @@
+#include "runner/replay.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "bus/candump_log.hpp"
+#include "driver/driver.hpp"
+#include "runner/operator_log.hpp"
+#include "runner/recorder.hpp"
+
+namespace marsokhod::runner {
+namespace {
+
+std::vector<protocol::CanFrame> read_can_log(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error("cannot read " + file.string());
+  std::vector<protocol::CanFrame> frames;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    auto parsed = bus::parse_candump_line(line);
+    if (const auto* e = std::get_if<bus::LogParseError>(&parsed)) {
+      throw std::runtime_error(file.string() + ":" + std::to_string(number) + ": " + e->reason);
+    }
+    if (const auto* f = std::get_if<bus::LoggedFrame>(&parsed)) frames.push_back(f->frame);
+  }
+  return frames;
+}
+
+std::string describe(const protocol::CanFrame& f) {
+  bus::LoggedFrame logged;
+  logged.timestamp = "0.000000";
+  logged.interface = "can0";
+  logged.frame = f;
+  const std::string line = bus::format_candump_line(logged);
+  return line.substr(line.rfind(' ') + 1);
+}
+
+}  // namespace
+
+ReplayResult replay(const std::filesystem::path& folder, const Params& params) {
+  const std::vector<protocol::CanFrame> frames = read_can_log(folder / "can.log");
+  std::ifstream log(folder / "operator.jsonl");
+  if (!log) throw std::runtime_error("cannot read " + (folder / "operator.jsonl").string());
+  ReplayResult result;
+  std::unique_ptr<driver::Driver> driver;
+  driver::RuntimeSettings runtime = driver::runtime_settings_from(params);
+  std::size_t cursor = 0;
+  std::string text;
+  int number = 0;
+  auto take = [&](std::size_t n, const std::string& where) {
+    if (cursor + n > frames.size()) throw std::runtime_error(where + ": can.log ends early");
+    std::vector<protocol::CanFrame> out(frames.begin() + static_cast<std::ptrdiff_t>(cursor),
+                                        frames.begin() + static_cast<std::ptrdiff_t>(cursor + n));
+    cursor += n;
+    return out;
+  };
+  while (std::getline(log, text)) {
+    const std::string where = (folder / "operator.jsonl").string() + ":" + std::to_string(++number);
+    nlohmann::json line;
+    try {
+      line = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception& e) {
+      throw std::runtime_error(where + ": " + e.what());
+    }
+    const std::int64_t t_us = parse_time_us(line.at("t").get<std::string>());
+    const auto received = take(line.at("rx").get<std::size_t>(), where);
+    const auto recorded = take(line.at("tx").get<std::size_t>(), where);
+    if (line.contains("runtime")) runtime = runtime_settings_from_json(line["runtime"], runtime);
+    if (!line.at("running").get<bool>()) {
+      driver.reset();
+      ++result.cycles;
+      continue;
+    }
+    if (!driver) driver = std::make_unique<driver::Driver>(params);
+    driver->set_runtime(runtime);
+    std::optional<driver::OperatorInput> input;
+    if (!line.at("input").is_null()) input = operator_input_from_json(line["input"]);
+    const auto& sent = driver->step(static_cast<double>(t_us) * 1e-6, received,
+                                    input ? &*input : nullptr);
+    ++result.cycles;
+    for (std::size_t i = 0; i < std::max(sent.size(), recorded.size()); ++i) {
+      if (i < sent.size() && i < recorded.size() && sent[i] == recorded[i]) {
+        ++result.frames_compared;
+        continue;
+      }
+      result.first_difference =
+          where + " (t = " + format_time_us(t_us) + "): request " + std::to_string(i) +
+          " recorded " + (i < recorded.size() ? describe(recorded[i]) : "nothing") + ", replayed " +
+          (i < sent.size() ? describe(sent[i]) : "nothing");
+      return result;
+    }
+  }
+  result.identical = true;
+  return result;
+}
+
+}  // namespace marsokhod::runner

@@ -1,0 +1,25 @@
+// `marsokhod replay DIR`: re-runs the driver over a recording (can.log + operator.jsonl, with
+// DIR/config.toml) and checks that every request it sends is identical, bit for bit, to the
+// recording. Each cycle the driver gets exactly the frames the recording says it received, at the
+// recorded time, with the recorded operator input and run-time settings.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "core/params.hpp"
+
+namespace marsokhod::runner {
+
+struct ReplayResult {
+  std::uint64_t cycles = 0;
+  std::uint64_t frames_compared = 0;
+  bool identical = false;
+  std::string first_difference;  // empty when identical
+};
+
+// Throws std::runtime_error naming the file and line for a recording it cannot read.
+ReplayResult replay(const std::filesystem::path& folder, const Params& params);
+
+}  // namespace marsokhod::runner

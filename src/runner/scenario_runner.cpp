@@ -1,0 +1,151 @@
+#include "runner/scenario_runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+
+#include "runner/metrics.hpp"
+#include "runner/operator_log.hpp"
+#include "runner/recorder.hpp"
+#include "runner/session.hpp"
+
+namespace marsokhod::runner {
+namespace {
+
+std::string number(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+void apply_fault(const FaultEvent& f, Session& session, Metrics& metrics, double now) {
+  sim::SimulatedRover& rover = session.rover();
+  sim::SimFaults faults = f.clear ? sim::SimFaults{} : rover.faults();
+  for (std::size_t w : f.wheel_blocked) faults.wheel_blocked[w] = true;
+  for (std::size_t w : f.wheel_no_contact) faults.wheel_no_contact[w] = true;
+  for (std::size_t c : f.silent) faults.silent[c] = true;
+  if (f.frame_loss) faults.frame_loss_probability = *f.frame_loss;
+  if (f.lost_pulses) faults.lost_pulse_fraction[f.lost_pulses->first] = f.lost_pulses->second;
+  if (f.battery_sag_ohm) faults.extra_series_resistance_ohm = *f.battery_sag_ohm;
+  rover.set_faults(faults);
+  if (f.brownout) rover.force_brownout();
+  if (f.driver_halt) {
+    session.halt_driver();
+    metrics.mark_stop(now);
+  }
+}
+
+CheckResult evaluate(const Check& c, const std::map<std::string, double>& metrics) {
+  CheckResult r{c.name, c.metric, false, std::nan(""), ""};
+  if (c.min && c.max) r.limit = "[" + number(*c.min) + ", " + number(*c.max) + "]";
+  else if (c.min) r.limit = ">= " + number(*c.min);
+  else r.limit = "<= " + number(*c.max);
+  const auto it = metrics.find(c.metric);
+  if (it == metrics.end()) {
+    r.limit += " (no such metric)";
+    return r;
+  }
+  r.value = it->second;
+  r.passed = std::isfinite(r.value) && (!c.min || r.value >= *c.min) && (!c.max || r.value <= *c.max);
+  return r;
+}
+
+// The operator's input for the cycle at `now`: the latest event at or before it.
+const InputEvent* current_input(const Scenario& s, double now) {
+  const InputEvent* current = nullptr;
+  for (const InputEvent& e : s.inputs) {
+    if (e.t_s <= now + 1e-9) current = &e;
+  }
+  return current;
+}
+
+}  // namespace
+
+ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
+                            const RunOptions& options) {
+  ScenarioResult result;
+  result.scenario = scenario.name;
+  result.seed = options.seed.value_or(scenario.seed);
+  sim::SimOptions sim = scenario.sim;
+  sim.seed = result.seed;
+  Session session(params, sim);
+  if (scenario.state_of_charge) session.rover().set_state_of_charge(*scenario.state_of_charge);
+  session.set_runtime(runtime_settings_from_json(scenario.runtime, session.runtime()));
+  std::unique_ptr<Recorder> recorder;
+  if (options.out) recorder = std::make_unique<Recorder>(*options.out, options.config_file);
+  Metrics metrics(params);
+  std::size_t next_fault = 0, next_runtime = 0;
+  const InputEvent* previous = nullptr;
+  bool runtime_changed = true;
+  const auto wall_start = std::chrono::steady_clock::now();
+  while (session.time_s() < scenario.duration_s - 1e-9) {
+    const double now = session.time_s();
+    while (next_fault < scenario.faults.size() && scenario.faults[next_fault].t_s <= now + 1e-9) {
+      apply_fault(scenario.faults[next_fault++], session, metrics, now);
+    }
+    while (next_runtime < scenario.runtime_changes.size() &&
+           scenario.runtime_changes[next_runtime].t_s <= now + 1e-9) {
+      session.set_runtime(runtime_settings_from_json(
+          scenario.runtime_changes[next_runtime++].settings, session.runtime()));
+      runtime_changed = true;
+    }
+    const InputEvent* event = current_input(scenario, now);
+    if (event != previous && event != nullptr) {
+      if (!event->input) metrics.mark_stop(now);
+      const auto& t = event->input && event->input->targets ? event->input->targets : std::nullopt;
+      metrics.set_joint_targets(t ? t->front_joint_target_rad : std::nullopt,
+                                t ? t->rear_joint_target_rad : std::nullopt);
+    }
+    previous = event;
+    const driver::OperatorInput* input = event && event->input ? &*event->input : nullptr;
+    const CycleRecord& cycle = session.step(input);
+    metrics.observe(session, cycle);
+    if (recorder) {
+      recorder->record(cycle, runtime_changed ? std::optional(session.runtime()) : std::nullopt,
+                       session.status(), session.rover());
+    }
+    runtime_changed = false;
+  }
+  result.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  result.sim_time_s = session.time_s();
+  result.real_time_factor = result.wall_time_s > 0.0 ? result.sim_time_s / result.wall_time_s : 0.0;
+  result.metrics = metrics.finish(session);
+  result.passed = true;
+  for (const Check& c : scenario.checks) {
+    result.checks.push_back(evaluate(c, result.metrics));
+    result.passed = result.passed && result.checks.back().passed;
+  }
+  recorder.reset();  // flush before plotting
+  if (options.out && options.plots) {
+    if (auto note = make_plots(*options.out)) result.notes.push_back(*note);
+  }
+  return result;
+}
+
+nlohmann::ordered_json to_json(const ScenarioResult& r) {
+  nlohmann::ordered_json j;
+  j["scenario"] = r.scenario;
+  j["seed"] = r.seed;
+  j["sim_time_s"] = r.sim_time_s;
+  j["wall_time_s"] = r.wall_time_s;
+  j["real_time_factor"] = r.real_time_factor;
+  j["metrics"] = nlohmann::ordered_json::object();
+  for (const auto& [name, value] : r.metrics) j["metrics"][name] = value;
+  j["checks"] = nlohmann::ordered_json::array();
+  for (const CheckResult& c : r.checks) {
+    j["checks"].push_back({{"name", c.name},
+                           {"metric", c.metric},
+                           {"passed", c.passed},
+                           {"value", std::isfinite(c.value) ? nlohmann::ordered_json(c.value)
+                                                            : nlohmann::ordered_json()},
+                           {"limit", c.limit}});
+  }
+  j["passed"] = r.passed;
+  if (!r.notes.empty()) j["notes"] = r.notes;
+  return j;
+}
+
+}  // namespace marsokhod::runner

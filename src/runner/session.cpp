@@ -1,0 +1,53 @@
+#include "runner/session.hpp"
+
+#include <cmath>
+
+namespace marsokhod::runner {
+
+Session::Session(const Params& params, const sim::SimOptions& options)
+    : params_(&params),
+      rover_(params, options),
+      driver_(std::make_unique<driver::Driver>(params)),
+      runtime_(driver_->runtime()),
+      cycle_us_(std::llround(params.cycle.period_s * 1e6)) {}
+
+void Session::set_runtime(const driver::RuntimeSettings& settings) {
+  driver::validate(settings);
+  runtime_ = settings;
+  if (driver_) driver_->set_runtime(settings);
+}
+
+const CycleRecord& Session::step(const driver::OperatorInput* input) {
+  record_ = CycleRecord{};
+  record_.time_us = time_us_;
+  const double t = static_cast<double>(time_us_) * 1e-6;
+  record_.received = rover_.advance_to(t);
+  if (halted_) {
+    record_.driver_running = false;
+    time_us_ += cycle_us_;
+    ++cycles_;
+    return record_;
+  }
+  if (!rover_.computer_on()) {
+    driver_.reset();  // the onboard computer is down, and the driver with it
+  } else if (!driver_) {
+    driver_ = std::make_unique<driver::Driver>(*params_);  // rebooted: a fresh start-up
+    driver_->set_runtime(runtime_);
+    ++restarts_;
+  }
+  record_.driver_running = driver_ != nullptr;
+  record_.input = input;
+  if (driver_) {
+    std::vector<protocol::CanFrame> frames;
+    frames.reserve(record_.received.size());
+    for (const sim::TimedFrame& f : record_.received) frames.push_back(f.frame);
+    record_.sent = driver_->step(t, frames, input);
+    for (const protocol::CanFrame& f : record_.sent) rover_.send(f, t);
+    last_status_ = driver_->status();
+  }
+  time_us_ += cycle_us_;
+  ++cycles_;
+  return record_;
+}
+
+}  // namespace marsokhod::runner

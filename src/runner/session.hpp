@@ -1,0 +1,73 @@
+// The embedded rover: the simulated rover and the driver in lockstep on an in-process bus, the
+// way `marsokhod run` and `marsokhod scenario` use them. Time is a value: cycle k runs at
+// t_k = k·h (whole microseconds, so that a recording's timestamps give back the same numbers in
+// replay). Each cycle:
+//   1. the rover runs to t_k and hands over the frames its controllers delivered (with the bus
+//      model's timing: the responses to the requests of cycle k−1);
+//   2. the driver steps with them and the operator's input of this cycle;
+//   3. its requests go onto the bus at t_k.
+// While the simulated onboard computer is browned out the driver is down (it runs on that
+// computer); when it comes back a fresh driver starts up, as after a reboot.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/params.hpp"
+#include "driver/driver.hpp"
+#include "sim/rover/simulated_rover.hpp"
+
+namespace marsokhod::runner {
+
+// What a recorder sees of one cycle.
+struct CycleRecord {
+  std::int64_t time_us = 0;                       // t_k
+  std::vector<sim::TimedFrame> received;          // delivered to the driver before this step
+  std::vector<protocol::CanFrame> sent;           // the driver's requests at t_k
+  const driver::OperatorInput* input = nullptr;   // the operator's input of this cycle, if any
+  bool driver_running = true;
+};
+
+class Session {
+ public:
+  Session(const Params& params, const sim::SimOptions& options);
+
+  // One cycle with the operator's input (nullptr: none arrived this cycle).
+  const CycleRecord& step(const driver::OperatorInput* input = nullptr);
+
+  std::int64_t cycle_us() const { return cycle_us_; }
+  double time_s() const { return static_cast<double>(time_us_) * 1e-6; }
+  std::uint64_t cycles() const { return cycles_; }
+  sim::SimulatedRover& rover() { return rover_; }
+  const sim::SimulatedRover& rover() const { return rover_; }
+  bool driver_running() const { return driver_ != nullptr; }
+  // The driver's status (the last one before a brown-out while it is down).
+  const driver::DriverStatus& status() const { return last_status_; }
+  driver::Driver* driver() { return driver_.get(); }
+  // Run-time settings for the driver now and after any restart; throws std::invalid_argument.
+  void set_runtime(const driver::RuntimeSettings& settings);
+  const driver::RuntimeSettings& runtime() const { return runtime_; }
+  // The driver stops stepping for good (a crash of the driver process): nothing is sent any more
+  // and µ8's dead man's switch must stop the motors.
+  void halt_driver() { halted_ = true; }
+  bool driver_halted() const { return halted_; }
+  std::uint64_t driver_restarts() const { return restarts_; }
+
+ private:
+  const Params* params_;
+  sim::SimulatedRover rover_;
+  std::unique_ptr<driver::Driver> driver_;
+  driver::RuntimeSettings runtime_;
+  driver::DriverStatus last_status_;
+  std::int64_t cycle_us_;
+  std::int64_t time_us_ = 0;
+  std::uint64_t cycles_ = 0;
+  std::uint64_t restarts_ = 0;
+  bool halted_ = false;
+  CycleRecord record_;
+};
+
+}  // namespace marsokhod::runner
