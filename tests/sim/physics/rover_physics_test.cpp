@@ -24,9 +24,12 @@ TEST(RoverPhysics, StartsAtRestOnTheShaftsInitialPositions) {
   RoverPhysics physics(Params{}, TerrainSpec{});
   EXPECT_DOUBLE_EQ(physics.timestep_s(), 0.001);
   EXPECT_DOUBLE_EQ(physics.time_s(), 0.0);
+  // Remark 3.1's joints, each shaft at its gap's upper end (p + b) so that Procedure 4.3's push
+  // toward the negative end crosses the whole gap first.
   const MotorVector shaft = physics.shaft_angle_rad();
-  EXPECT_DOUBLE_EQ(shaft[kFrontJoint], -1.2121);  // Remark 3.1
-  EXPECT_DOUBLE_EQ(shaft[kRearJoint], 1.2121);
+  EXPECT_DOUBLE_EQ(shaft[kFrontJoint], -1.2121 + 0.052);
+  EXPECT_DOUBLE_EQ(shaft[kRearJoint], 1.2121 + 0.250);
+  EXPECT_DOUBLE_EQ(physics.truth().joint_angle_rad[kFrontJoint], -1.2121);
   EXPECT_DOUBLE_EQ(physics.truth().joint_angle_rad[kRearJoint], 1.2121);
   run(physics, 500);
   EXPECT_NEAR(physics.time_s(), 0.5, 1e-12);
@@ -93,17 +96,19 @@ double shaft_travel_before_joint_moves(RoverPhysics& physics, std::size_t motor,
   return std::numeric_limits<double>::infinity();
 }
 
-// Procedure 4.1's backlash: 14° at the rear joint. Procedure 4.3 leaves the shaft at the gap's
-// lower end, so extending (+) first crosses the gap; contracting at once does not.
+// Procedure 4.1's backlash: 14° at the rear joint. The shaft starts at the gap's upper end, so
+// extending (+) moves the joint at once; contracting first crosses the whole gap, and so does
+// every reversal after.
 TEST(RoverPhysics, RearJointMovesOnlyAfterTheShaftCrossesTheGap) {
   RoverPhysics physics(Params{}, TerrainSpec{});
   physics.set_drive(drive_at({}));
   run(physics, 300);
-  // 1 mrad of joint motion at 2 rad/s of shaft adds about 1 mrad and a few steps of lag.
-  EXPECT_NEAR(shaft_travel_before_joint_moves(physics, kRearJoint, 2.0), 0.250, 0.01);
+  EXPECT_LT(shaft_travel_before_joint_moves(physics, kRearJoint, 2.0), 0.01);
   run(physics, 200);
-  // Reversing: the whole gap again before the joint turns back.
+  // 1 mrad of joint motion at 2 rad/s of shaft adds about 1 mrad and a few steps of lag.
   EXPECT_NEAR(shaft_travel_before_joint_moves(physics, kRearJoint, -2.0), 0.250, 0.01);
+  run(physics, 200);
+  EXPECT_NEAR(shaft_travel_before_joint_moves(physics, kRearJoint, 2.0), 0.250, 0.01);
   expect_healthy(physics);
 }
 
@@ -111,8 +116,8 @@ TEST(RoverPhysics, FrontJointBacklashIsThreeDegrees) {
   RoverPhysics physics(Params{}, TerrainSpec{});
   physics.set_drive(drive_at({}));
   run(physics, 300);
-  // p6 = −γf: extending is negative, from the gap's lower end at once.
-  EXPECT_LT(shaft_travel_before_joint_moves(physics, kFrontJoint, -2.0), 0.01);
+  // p6 = −γf: extending is negative, first across the gap from its upper end.
+  EXPECT_NEAR(shaft_travel_before_joint_moves(physics, kFrontJoint, -2.0), 0.052, 0.01);
   run(physics, 200);
   EXPECT_NEAR(shaft_travel_before_joint_moves(physics, kFrontJoint, 2.0), 0.052, 0.01);
   expect_healthy(physics);
