@@ -7,8 +7,10 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev libspdlog-dev nlohmann-json3-dev
+  libboost-dev
   libmujoco-dev gnuplot-nox
   clang libclang-rt-14-dev
+  python3-can can-utils iproute2
 )
 
 missing=()

@@ -96,7 +96,16 @@ std::variant<std::monostate, LoggedFrame, LogParseError> parse_candump_line(std:
   LoggedFrame out;
   if (auto e = parse_timestamp(line.substr(0, space1), out)) return LogParseError{*e};
   out.interface = std::string(rest.substr(0, space2));
-  const std::string_view frame = trim(rest.substr(space2 + 1));
+  std::string_view frame = trim(rest.substr(space2 + 1));
+  // python-can's CanutilsLogWriter appends the direction, " R" (received) or " T" (sent).
+  if (const auto space3 = frame.find(' '); space3 != std::string_view::npos) {
+    const std::string_view direction = trim(frame.substr(space3 + 1));
+    if (direction != "R" && direction != "T" && direction != "r" && direction != "t") {
+      return LogParseError{"unexpected '" + std::string(direction) +
+                           "' after the frame; only a direction R or T may follow it"};
+    }
+    frame = frame.substr(0, space3);
+  }
   const auto hash = frame.find('#');
   if (hash == std::string_view::npos) {
     return LogParseError{"frame '" + std::string(frame) + "' has no '#' between identifier and data"};

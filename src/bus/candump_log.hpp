@@ -2,6 +2,8 @@
 //   (1436509052.249713) can0 180#03012C
 // Classic CAN only: a 3-hex-digit standard or 8-hex-digit extended identifier, '#', 0–8 data
 // bytes as hex pairs; `R` after '#' marks a remote frame. CAN FD ("##") is not ours and rejected.
+// A trailing direction flag, " R" or " T" (python-can's CanutilsLogWriter writes one), is accepted
+// and not kept.
 #pragma once
 
 #include <optional>

@@ -53,6 +53,17 @@ TEST(CandumpLog, ExtendedIdentifier) {
   EXPECT_EQ(f.frame.id, 0x12345678u);
 }
 
+TEST(CandumpLog, AcceptsPythonCanDirectionFlag) {
+  // can.CanutilsLogWriter (python-can 4) ends every line with " R" (received) or " T" (sent).
+  const LoggedFrame received = frame_of("(1.500000) can0 188#0001000200030004 R");
+  EXPECT_EQ(received.frame.id, 0x188u);
+  EXPECT_EQ(received.frame.dlc, 8);
+  EXPECT_EQ(frame_of("(1.500000) can0 418# T").frame.dlc, 0);
+  EXPECT_EQ(frame_of("(1.500000) can0 418#R T").remote, true);
+  EXPECT_EQ(error_of("(1.0) can0 180#00 X"),
+            "unexpected 'X' after the frame; only a direction R or T may follow it");
+}
+
 TEST(CandumpLog, BlankAndCommentLinesAreNotFrames) {
   EXPECT_TRUE(std::holds_alternative<std::monostate>(parse_candump_line("")));
   EXPECT_TRUE(std::holds_alternative<std::monostate>(parse_candump_line("   ")));
