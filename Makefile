@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 60
 CMAKE_FLAGS ?= -DMARSOKHOD_WERROR=ON
 
-.PHONY: all deps configure build test bench fuzz run clean
+.PHONY: all deps configure build test bench fuzz run web clean
 
 all: build
 
@@ -17,8 +17,9 @@ configure: deps
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-test: build
+test: build web
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+	@if [ -f web/package.json ]; then cd web && MARSOKHOD_BIN=$(abspath $(BUILD_DIR))/src/app/marsokhod npm test; fi
 
 bench: build
 	@bash scripts/run-benchmarks.sh $(BUILD_DIR)
@@ -26,10 +27,14 @@ bench: build
 fuzz: deps
 	@FUZZ_SECONDS=$(FUZZ_SECONDS) bash scripts/fuzz.sh
 
-run:
-	@echo "make run: the simulated rover arrives with the 'marsokhod run' issue; not yet available." >&2
-	@echo "Today you can build and test (make test) and decode CAN traces (build/src/app/marsokhod decode FILE)." >&2
-	@exit 2
+# The console: npm packages from the lock file, then the Vite build into web/dist.
+web: deps
+	@if [ -f web/package.json ]; then cd web && npm ci --no-audit --no-fund && npm run build; \
+	else echo "make web: no console sources (web/package.json) yet"; fi
+
+# The simulated rover, the driver and the console in one process; open the printed URL.
+run: build web
+	$(BUILD_DIR)/src/app/marsokhod run --web web/dist
 
 clean:
 	rm -rf $(BUILD_DIR) build-fuzz

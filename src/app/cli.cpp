@@ -8,6 +8,7 @@
 #include <ostream>
 
 #include "app/decode_command.hpp"
+#include "app/live_commands.hpp"
 #include "app/scenario_command.hpp"
 #include "config/load_params.hpp"
 
@@ -76,6 +77,45 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   scenario_cmd->add_flag("--list", scenario.list, "name the shipped scenarios");
   scenario_cmd->add_flag("--no-plots", scenario.no_plots, "skip the gnuplot PNGs");
 
+  RunArgs run;
+  CLI::App* run_cmd = cli.add_subcommand(
+      "run", "the simulated rover and the driver in real time, with the console (the default)");
+  auto add_console = [](CLI::App* cmd, ConsoleArgs& c) {
+    cmd->add_option("--listen", c.listen, "the console's ADDR:PORT (default 127.0.0.1:8080)");
+    cmd->add_option("--token", c.token, "the console's access token (default: generated)");
+    cmd->add_option("--web", c.web, "the console's build folder (default web/dist)");
+    cmd->add_flag("--no-console", c.no_console, "no HTTP/WebSocket server");
+    cmd->add_option("--status-rate", c.status_rate_hz, "status messages per second")
+        ->check(CLI::Range(1.0, 64.0));
+  };
+  add_console(run_cmd, run.console);
+  run_cmd->add_option("--scenario", run.scenario, "terrain and faults from a scenario file")
+      ->check(CLI::ExistingFile);
+  run_cmd->add_option("--seed", run.seed, "the simulator's seed");
+  run_cmd->add_option("--duration", run.duration_s, "stop after this many seconds (default: on Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--record", run.record, "write can.log, operator.jsonl and telemetry.csv here");
+  run_cmd->add_flag("--quiet", run.quiet, "no status line in the terminal");
+
+  SimArgs sim;
+  CLI::App* sim_cmd = cli.add_subcommand("sim", "the simulated rover alone, served over socketcand");
+  sim_cmd->add_option("--listen", sim.listen, "ADDR:PORT (default 127.0.0.1:29536)");
+  sim_cmd->add_option("--channel", sim.channel, "the bus' channel name (default can0)");
+  sim_cmd->add_option("--scenario", sim.scenario, "terrain and faults from a scenario file")
+      ->check(CLI::ExistingFile);
+  sim_cmd->add_option("--seed", sim.seed, "the simulator's seed");
+  sim_cmd->add_option("--duration", sim.duration_s, "stop after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+
+  DriveArgs drive;
+  CLI::App* drive_cmd = cli.add_subcommand("drive", "the driver on a real or remote bus, with the console");
+  drive_cmd->add_option("--can", drive.can, "socketcan:can0 or socketcand://HOST:PORT/CHANNEL")
+      ->required();
+  add_console(drive_cmd, drive.console);
+  drive_cmd->add_option("--duration", drive.duration_s, "stop after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+  drive_cmd->add_flag("--quiet", drive.quiet, "no status line in the terminal");
+
   std::string replay_dir;
   CLI::App* replay_cmd = cli.add_subcommand(
       "replay", "re-run the driver over a recording and compare every request, bit for bit");
@@ -112,6 +152,9 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     return run_scenario_command(scenario, params, *config_path, out, err);
   }
   if (replay_cmd->parsed()) return run_replay_command(replay_dir, params, out, err);
+  if (run_cmd->parsed()) return run_live(run, params, *config_path, out, err);
+  if (sim_cmd->parsed()) return run_sim(sim, params, out, err);
+  if (drive_cmd->parsed()) return run_drive(drive, params, out, err);
   return kUsageError;
 }
 

@@ -50,8 +50,15 @@ std::optional<std::string> OperatorChannel::check_targets(const mobility::Operat
 
 std::optional<std::string> OperatorChannel::receive(const OperatorInput& input, double time_s) {
   mobility::OperatorTargets next = current_;
-  if (input.gamepad.has_value() == input.targets.has_value() && !input.stop) {
-    last_rejection_ = "an operator input carries either a gamepad reading or targets";
+  const bool carries_command = input.gamepad.has_value() || input.targets.has_value();
+  if (input.gamepad.has_value() && input.targets.has_value()) {
+    last_rejection_ = "an operator input carries either a gamepad reading or targets, not both";
+    return last_rejection_;
+  }
+  // clear_faults alone changes no target and does not count as the operator's command.
+  if (!carries_command && !input.stop) {
+    if (input.clear_faults) return std::nullopt;
+    last_rejection_ = "an operator input carries a gamepad reading, targets or a stop";
     return last_rejection_;
   }
   if (input.gamepad) {

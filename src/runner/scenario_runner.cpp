@@ -20,7 +20,9 @@ std::string number(double v) {
   return out.str();
 }
 
-void apply_fault(const FaultEvent& f, Session& session, Metrics& metrics, double now) {
+}  // namespace
+
+void apply_fault(const FaultEvent& f, Session& session) {
   sim::SimulatedRover& rover = session.rover();
   sim::SimFaults faults = f.clear ? sim::SimFaults{} : rover.faults();
   for (std::size_t w : f.wheel_blocked) faults.wheel_blocked[w] = true;
@@ -31,11 +33,10 @@ void apply_fault(const FaultEvent& f, Session& session, Metrics& metrics, double
   if (f.battery_sag_ohm) faults.extra_series_resistance_ohm = *f.battery_sag_ohm;
   rover.set_faults(faults);
   if (f.brownout) rover.force_brownout();
-  if (f.driver_halt) {
-    session.halt_driver();
-    metrics.mark_stop(now);
-  }
+  if (f.driver_halt) session.halt_driver();
 }
+
+namespace {
 
 CheckResult evaluate(const Check& c, const std::map<std::string, double>& metrics) {
   CheckResult r{c.name, c.metric, false, std::nan(""), ""};
@@ -83,7 +84,9 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   while (session.time_s() < scenario.duration_s - 1e-9) {
     const double now = session.time_s();
     while (next_fault < scenario.faults.size() && scenario.faults[next_fault].t_s <= now + 1e-9) {
-      apply_fault(scenario.faults[next_fault++], session, metrics, now);
+      const FaultEvent& fault = scenario.faults[next_fault++];
+      apply_fault(fault, session);
+      if (fault.driver_halt) metrics.mark_stop(now);
     }
     while (next_runtime < scenario.runtime_changes.size() &&
            scenario.runtime_changes[next_runtime].t_s <= now + 1e-9) {

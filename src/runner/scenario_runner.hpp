@@ -45,6 +45,11 @@ struct RunOptions {
   bool plots = true;
 };
 
+class Session;
+// Switches a scenario's fault on the running session (the simulator's faults, a brown-out, a
+// driver that halts).
+void apply_fault(const FaultEvent& fault, Session& session);
+
 ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
                             const RunOptions& options);
 

@@ -1,0 +1,57 @@
+// The commands that run in real time: `marsokhod run` (simulator + driver + console in one
+// process), `marsokhod sim` (the simulated rover served over socketcand) and `marsokhod drive`
+// (the driver on a real or remote bus, with the console). Real-time pacing, sockets and signals
+// live here, outside the deterministic cycle: the cycle still takes time as a value.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "core/params.hpp"
+
+namespace marsokhod::app {
+
+struct ConsoleArgs {
+  std::string listen = "127.0.0.1:8080";
+  std::string token;            // empty: generated
+  std::string web;              // the console's build; empty: web/dist of the working folder or source tree
+  bool no_console = false;
+  double status_rate_hz = 20.0;
+};
+
+struct RunArgs {
+  ConsoleArgs console;
+  std::string scenario;         // terrain and faults from a scenario file (its inputs are ignored)
+  std::uint64_t seed = 1;
+  double duration_s = 0.0;      // 0: until SIGINT/SIGTERM
+  std::string record;           // a folder for can.log, operator.jsonl, telemetry.csv
+  bool quiet = false;           // no status line in the terminal
+};
+
+struct SimArgs {
+  std::string listen = "127.0.0.1:29536";
+  std::string channel = "can0";
+  std::string scenario;
+  std::uint64_t seed = 1;
+  double duration_s = 0.0;
+};
+
+struct DriveArgs {
+  std::string can;              // socketcan:can0 | socketcand://HOST:PORT/CHANNEL
+  ConsoleArgs console;
+  double duration_s = 0.0;
+  bool quiet = false;
+};
+
+int run_live(const RunArgs& args, const Params& params, const std::filesystem::path& config_file,
+             std::ostream& out, std::ostream& err);
+int run_sim(const SimArgs& args, const Params& params, std::ostream& out, std::ostream& err);
+int run_drive(const DriveArgs& args, const Params& params, std::ostream& out, std::ostream& err);
+
+// Where the console's files are: the given folder, else ./web/dist, else the source tree's.
+std::optional<std::filesystem::path> find_web_dist(const std::string& given);
+
+}  // namespace marsokhod::app

@@ -1,0 +1,93 @@
+// The operator console's server: HTTP for the console's files and a WebSocket at /ws for the
+// protocol of docs/operator-protocol.md, on its own thread (Boost.Beast over Boost.Asio). The
+// application's control loop never waits on the network: it takes the commands that arrived
+// (take_inbound) and hands over the newest status (publish_status), both without blocking on
+// any client.
+//
+// Safety and flow rules (docs/operator-protocol.md has them for console writers):
+//  - every WebSocket needs the token (/ws?token=…); the console's files load without it;
+//  - control rules: control_arbiter.hpp; a controller's disconnect becomes a stop at once, its
+//    silence is the driver's operator_timeout_s;
+//  - every queue is bounded: a client whose outgoing queue fills (it reads slower than status
+//    arrives, or not at all) is dropped rather than allowed to hold memory or delay others;
+//    when the application stops taking commands, new ones are refused with an error, except a
+//    stop, which displaces the oldest command.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/params.hpp"
+#include "link/control_arbiter.hpp"
+#include "link/listen_address.hpp"
+
+namespace marsokhod::link {
+
+struct ServerOptions {
+  ListenAddress listen;                             // --listen, default 127.0.0.1:8080
+  std::optional<std::filesystem::path> static_dir;  // the console's build (web/dist); none: 404
+  std::string token;                   // empty: generate_token(); else validate_token()
+  double status_period_s = 0.05;       // at most one status per period (20 Hz), the newest
+  std::size_t max_clients = 16;        // WebSocket clients at once; more get HTTP 503
+  std::size_t client_queue_messages = 64;   // unsent messages per client before it is dropped
+  std::size_t inbound_queue_commands = 256;  // commands waiting for take_inbound
+  double idle_timeout_s = 10.0;        // a WebSocket silent this long (pings unanswered) is closed
+};
+
+struct ServerStats {
+  std::size_t clients = 0;              // WebSocket clients connected now
+  std::optional<ClientId> controller;   // who holds control
+  std::uint64_t connections = 0;        // WebSocket clients accepted since start()
+  std::uint64_t unauthorized = 0;       // upgrades refused for a missing or wrong token
+  std::uint64_t dropped_slow = 0;       // clients dropped because their queue was full
+  std::uint64_t messages_received = 0;  // WebSocket messages from clients
+  std::uint64_t messages_rejected = 0;  // answered with an error
+  std::uint64_t inbound_refused = 0;    // refused (or displaced by a stop): the queue was full
+  std::uint64_t controller_disconnects = 0;  // each became a stop
+  std::uint64_t statuses_published = 0;  // publish_status calls
+  std::uint64_t statuses_sent = 0;       // status broadcasts; fewer when coalesced
+  std::uint64_t http_requests = 0;       // plain HTTP requests (files, refusals)
+};
+
+class ServerCore;
+
+class LinkServer {
+ public:
+  // Keeps a copy of `params` (the ranges the parser checks). Throws std::invalid_argument for a
+  // bad token, a status period that is negative or not finite, or zero-sized limits.
+  LinkServer(const Params& params, ServerOptions options);
+  ~LinkServer();  // stop()
+  LinkServer(const LinkServer&) = delete;
+  LinkServer& operator=(const LinkServer&) = delete;
+
+  // Binds and starts the server thread. Throws std::runtime_error naming the address when it
+  // cannot listen (in use, not a local address), std::logic_error when called twice.
+  void start();
+  // Closes every connection and joins the thread. Idempotent; start() cannot follow.
+  void stop();
+
+  // The bound port (the one chosen for port 0); 0 before start().
+  std::uint16_t port() const;
+  const std::string& token() const;
+  // What to open in a browser: "http://127.0.0.1:8080/?token=…".
+  std::string console_url() const;
+
+  // Thread-safe. Every command that arrived since the last call, oldest first.
+  std::vector<InboundCommand> take_inbound();
+  // Thread-safe, never blocks on clients: keeps `status` as the newest; the server thread sends
+  // it to every client as {"type":"status","status":…} no sooner than status_period_s after the
+  // previous one. Statuses published in between are replaced, never queued.
+  void publish_status(nlohmann::json status);
+  ServerStats stats() const;
+
+ private:
+  std::unique_ptr<ServerCore> core_;
+};
+
+}  // namespace marsokhod::link

@@ -1,0 +1,36 @@
+// The messages the server sends (docs/operator-protocol.md, "Server → console"): the JSON of
+// each, built in one place so that the protocol document has one place to match.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "link/control_arbiter.hpp"
+
+namespace marsokhod::link {
+
+inline constexpr int kProtocolVersion = 1;
+
+// {"type":"hello","protocol":1,"client_id":N,"controller":M|null,"read_only":bool}
+nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller);
+
+// {"type":"control","controller":M|null,"read_only":bool,"lost_control":bool,"reason":"…"},
+// as `recipient` sees it: lost_control is true for the client that held control before.
+nlohmann::json control_json(const ControlChange& change, ClientId recipient);
+
+// {"type":"error","field":"…","message":"…"}
+nlohmann::json error_json(const MessageError& error);
+
+// {"type":"pong"}
+nlohmann::json pong_json();
+
+// {"type":"status","status":{…}}: the object publish_status was given, unchanged.
+nlohmann::json status_envelope(const nlohmann::json& status);
+
+// The JSON text as sent: invalid UTF-8 in a string (a garbled fault text, say) is replaced by
+// U+FFFD instead of failing the whole message.
+std::string wire_text(const nlohmann::json& message);
+
+}  // namespace marsokhod::link

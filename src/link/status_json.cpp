@@ -1,0 +1,95 @@
+#include "link/status_json.hpp"
+
+#include <stdexcept>
+
+#include "link/operator_message.hpp"
+
+namespace marsokhod::link {
+namespace {
+
+using Json = nlohmann::json;
+
+Json motor_json(const driver::MotorStatus& motor) {
+  return {{"shaft_position_rad", motor.shaft_position_rad},
+          {"position_rad", motor.position_rad},
+          {"velocity_radps", motor.velocity_radps},
+          {"no_load_velocity_radps", motor.no_load_velocity_radps},
+          {"load_radps", motor.load_radps},
+          {"commanded_radps", motor.commanded_radps},
+          {"duty", motor.duty},
+          {"silent_cycles", motor.silent_cycles}};
+}
+
+Json velocities_json(const driver::TargetStatus& t) {
+  return {{"v1_radps", t.v1_radps},
+          {"v2_radps", t.v2_radps},
+          {"v4_radps", t.v4_radps},
+          {"v6_radps", t.v6_radps},
+          {"v7_radps", t.v7_radps}};
+}
+
+Json bus_json(const driver::BusCounters& bus) {
+  return {{"frames", bus.frames},         {"malformed", bus.malformed},
+          {"duplicates", bus.duplicates}, {"foreign", bus.foreign},
+          {"missed", bus.missed},         {"last_error", bus.last_error}};
+}
+
+Json gait_json(const driver::DriverStatus& s) {
+  return {{"id", gait_id(s.gait)},
+          {"name", mobility::gait_name(s.gait)},
+          {"state", s.gait_state},
+          {"speed", s.gait_speed}};
+}
+
+Json joint_bounds_json(const driver::JointBoundsStatus& b) {
+  return {{"front_min_rad", b.front_min_rad},
+          {"front_max_rad", b.front_max_rad},
+          {"rear_min_rad", b.rear_min_rad},
+          {"rear_max_rad", b.rear_max_rad}};
+}
+
+}  // namespace
+
+Json status_json(const driver::DriverStatus& s, const Json& truth) {
+  if (!truth.is_null() && !truth.is_object()) {
+    throw std::invalid_argument("status_json: truth must be a JSON object or null, got " +
+                                std::string(truth.type_name()));
+  }
+  Json motors = Json::object();
+  for (std::size_t i = 0; i < kMotorCount; ++i) motors[kMotorNames[i]] = motor_json(s.motors[i]);
+  Json out = {
+      {"mission_time_s", s.mission_time_s},
+      {"cycle_time_s", s.cycle_time_s},
+      {"cycle", s.cycle},
+      {"mode", driver::mode_name(s.mode)},
+      {"startup_phase", driver::phase_name(s.startup_phase)},
+      {"supply_v", s.supply_v},
+      {"reference_supply_v", s.reference_supply_v},
+      {"yaw_rate_radps", s.yaw_rate_radps},
+      {"accel_mps2", s.accel_mps2},
+      {"front_tilt_rad", s.front_tilt_rad},
+      {"rear_tilt_rad", s.rear_tilt_rad},
+      {"slope_rad", s.slope_rad},
+      {"motors", motors},
+      {"sensor_silent_cycles", s.sensor_silent_cycles},
+      {"max_duty", s.max_duty},
+      {"driving_scale", s.driving_scale},
+      {"walking_scale", s.walking_scale},
+      {"targets", velocities_json(s.targets)},
+      {"commands", velocities_json(s.commands)},
+      {"gait", gait_json(s)},
+      {"front_axle_factor", s.front_axle_factor},
+      {"rear_axle_factor", s.rear_axle_factor},
+      {"joint_bounds", joint_bounds_json(s.joint_bounds)},
+      {"operator_timeout", s.operator_timeout},
+      {"operator_rejection", s.operator_rejection},
+      {"faults", s.faults},
+      {"warnings", s.warnings},
+      {"bus", bus_json(s.bus)},
+      {"lcd", s.lcd},
+  };
+  if (!truth.is_null()) out["truth"] = truth;
+  return out;
+}
+
+}  // namespace marsokhod::link

@@ -1,0 +1,19 @@
+// The driver's status as the console, the logs and the 3-D view read it: every field of
+// DriverStatus, units in the key names, motors keyed by their names in (3.1) (FL FR CL CR BL BR
+// AF AR). docs/operator-protocol.md lists the keys. A number that is not finite becomes null
+// (JSON has no NaN); strings are passed through as they are — the server replaces any invalid
+// UTF-8 when it writes the text.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "driver/status.hpp"
+
+namespace marsokhod::link {
+
+// `truth`: the simulator's ground truth for the 3-D view, attached as "truth" unless it is null.
+// Throws std::invalid_argument if `truth` is neither null nor an object.
+nlohmann::json status_json(const driver::DriverStatus& status,
+                           const nlohmann::json& truth = nullptr);
+
+}  // namespace marsokhod::link

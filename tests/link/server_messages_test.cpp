@@ -1,0 +1,44 @@
+// The server's messages as docs/operator-protocol.md shows them.
+#include "link/server_messages.hpp"
+
+#include <gtest/gtest.h>
+
+namespace marsokhod::link {
+namespace {
+
+TEST(ServerMessages, HelloSaysWhoHoldsControl) {
+  EXPECT_EQ(hello_json(3, std::nullopt),
+            nlohmann::json::parse(
+                R"({"type":"hello","protocol":1,"client_id":3,"controller":null,"read_only":true})"));
+  EXPECT_EQ(hello_json(3, 1)["controller"], 1);
+}
+
+TEST(ServerMessages, ControlTellsThePreviousControllerItLostControl) {
+  const ControlChange change{2, 1, "client 2 took control from client 1"};
+  const nlohmann::json previous = control_json(change, 1);
+  EXPECT_EQ(previous["type"], "control");
+  EXPECT_EQ(previous["controller"], 2);
+  EXPECT_EQ(previous["read_only"], true);
+  EXPECT_EQ(previous["lost_control"], true);
+  EXPECT_EQ(previous["reason"], "client 2 took control from client 1");
+  EXPECT_EQ(control_json(change, 2)["read_only"], false);
+  EXPECT_EQ(control_json(change, 2)["lost_control"], false);
+  EXPECT_EQ(control_json(change, 3)["lost_control"], false);
+  EXPECT_TRUE(control_json({std::nullopt, 1, "released"}, 3)["controller"].is_null());
+}
+
+TEST(ServerMessages, ErrorsPongAndStatus) {
+  EXPECT_EQ(error_json({"axes[1]", "too big"}),
+            nlohmann::json::parse(R"({"type":"error","field":"axes[1]","message":"too big"})"));
+  EXPECT_EQ(pong_json(), nlohmann::json::parse(R"({"type":"pong"})"));
+  EXPECT_EQ(status_envelope({{"cycle", 4}})["status"]["cycle"], 4);
+  EXPECT_EQ(status_envelope({{"cycle", 4}})["type"], "status");
+}
+
+TEST(ServerMessages, WireTextReplacesInvalidUtf8) {
+  const std::string text = wire_text({{"lcd", std::string("ok\xff")}});
+  EXPECT_EQ(text, "{\"lcd\":\"ok\xef\xbf\xbd\"}");
+}
+
+}  // namespace
+}  // namespace marsokhod::link

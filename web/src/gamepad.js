@@ -1,0 +1,56 @@
+// The browser's gamepad, read as the protocol's `gamepad` message wants it: the W3C standard
+// mapping's first 4 axes and 17 buttons (docs/gamepad.md). The server applies the dead zone and
+// the map of Remark 5.7; the console only reads and forwards.
+
+export const AXIS_COUNT = 4;
+export const BUTTON_COUNT = 17;
+
+export function neutralReading() {
+  return { axes: new Array(AXIS_COUNT).fill(0), buttons: new Array(BUTTON_COUNT).fill(false) };
+}
+
+// A pad's axes can overshoot ±1 by rounding; the server rejects anything beyond, so clamp. A
+// non-finite axis is a broken reading: send it as centered rather than let the stick run away.
+function cleanAxis(value) {
+  if (!Number.isFinite(value)) return 0;
+  return Math.max(-1, Math.min(1, value));
+}
+
+// The first connected pad in the standard mapping, or null. Pads in another mapping have axes
+// and buttons in vendor order, which the server's map would misread.
+export function firstStandardPad(pads) {
+  for (const pad of pads ?? []) {
+    if (pad && pad.connected !== false && pad.mapping === 'standard') return pad;
+  }
+  return null;
+}
+
+export function readPad(pad) {
+  const reading = neutralReading();
+  for (let i = 0; i < AXIS_COUNT && i < pad.axes.length; ++i) reading.axes[i] = cleanAxis(pad.axes[i]);
+  for (let i = 0; i < BUTTON_COUNT && i < pad.buttons.length; ++i) {
+    const button = pad.buttons[i];
+    reading.buttons[i] = typeof button === 'object' ? Boolean(button.pressed) : button > 0.5;
+  }
+  return reading;
+}
+
+// Polls navigator.getGamepads(); returns {pad, reading} or null when no standard pad is there.
+export function pollGamepad(nav = navigator) {
+  if (typeof nav.getGamepads !== 'function') return null;
+  const pad = firstStandardPad(Array.from(nav.getGamepads()));
+  return pad ? { pad, reading: readPad(pad) } : null;
+}
+
+// The gamepad and the keyboard together: a key's axis wins where it is deflected, buttons add.
+export function mergeReadings(pad, keys) {
+  if (!pad) return keys;
+  return {
+    axes: pad.axes.map((value, i) => (keys.axes[i] !== 0 ? keys.axes[i] : value)),
+    buttons: pad.buttons.map((pressed, i) => pressed || keys.buttons[i]),
+  };
+}
+
+export function gamepadMessage(reading) {
+  return { type: 'gamepad', axes: reading.axes.slice(), buttons: reading.buttons.slice() };
+}

@@ -1,0 +1,153 @@
+// The console: connects to the link server, shows its status, and while it holds control sends
+// the operator's gamepad (or keyboard) reading at 20 Hz, continuously — the driver stops the
+// rover after 0.5 s without input (docs/operator-protocol.md, "Control").
+
+import './style.css';
+import { Link, websocketUrl } from './link.js';
+import { pollGamepad, mergeReadings, gamepadMessage, neutralReading } from './gamepad.js';
+import { Keyboard } from './keyboard.js';
+import { StatusPanel } from './status.js';
+import { Plots } from './plots.js';
+import { RoverView } from './view3d.js';
+import { ConfigPanel } from './config.js';
+
+const SEND_PERIOD_MS = 50;  // 20 Hz, ten messages within the driver's 0.5 s timeout
+const BUTTON_NAMES = ['A', 'B', 'X', 'Y', 'LB', 'RB', 'LT', 'RT', 'back', 'start', 'LS', 'RS',
+  'up', 'down', 'left', 'right', 'home'];
+
+const $ = (id) => document.getElementById(id);
+
+const token = new URLSearchParams(location.search).get('token');
+const link = new Link(websocketUrl(location, token ?? ''));
+const statusPanel = new StatusPanel(document);
+const plots = new Plots($('plot-area'));
+const view = new RoverView($('view3d'));
+const config = new ConfigPanel($('config-form'), {
+  send: (message) => link.send(message),
+  clearFaults: () => link.send({ type: 'clear_faults' }),
+});
+const keyboard = new Keyboard(window, { onStop: stop });
+
+// For the browser's developer tools and the tests: the link and the newest status.
+window.marsokhod = { link, view, status: null };
+
+// STOP latches: the console sends the neutral reading until the operator has let go of every
+// stick, button and key — otherwise its next 20 Hz message, the stick still pushed, would drive
+// on at once (a `stop` lasts only until the controller's next input).
+let stopLatched = false;
+const DEFLECTED = 0.1;  // the server's dead zone: less than this is no input
+
+function isNeutral(reading) {
+  return reading.axes.every((v) => Math.abs(v) < DEFLECTED) && !reading.buttons.some(Boolean);
+}
+
+function stop() {
+  stopLatched = true;
+  if (!link.stop()) showError('STOP not sent: not connected (a controlling console that drops off stops the rover anyway)');
+}
+
+function showError(text) {
+  const box = $('link-error');
+  box.textContent = `${new Date().toLocaleTimeString()}  ${text}`;
+  box.hidden = false;
+}
+
+function showLinkState() {
+  const labels = {
+    connecting: 'connecting…',
+    'read-only': 'connected, read-only',
+    'in-control': 'in control',
+    disconnected: 'disconnected',
+  };
+  let text = labels[link.state];
+  if (link.state === 'read-only' || link.state === 'in-control') {
+    const who = link.controller == null ? 'nobody controls'
+      : link.controller === link.clientId ? `client ${link.clientId}` : `client ${link.controller} controls`;
+    text += ` · ${who}`;
+  }
+  const element = $('link-state');
+  element.textContent = text;
+  element.dataset.state = link.state;
+  const connected = link.state === 'read-only' || link.state === 'in-control';
+  $('take-control').disabled = !connected || link.inControl;
+  $('release-control').disabled = !link.inControl;
+  config.setEnabled(link.inControl);
+}
+
+link.addEventListener('state', showLinkState);
+link.addEventListener('control', showLinkState);
+link.addEventListener('error', (e) => showError(e.detail.text));
+link.addEventListener('pong', (e) => { $('link-state').title = `round trip ${e.detail.rtt_ms.toFixed(0)} ms`; });
+link.addEventListener('status', (e) => {
+  const status = e.detail.status;
+  window.marsokhod.status = status;
+  statusPanel.update(status);
+  plots.add(status);
+  view.update(status);
+  $('view-source').textContent = status.truth ? '(simulator ground truth)' : '(joint angles, rover placed level)';
+});
+
+$('take-control').addEventListener('click', () => link.takeControl());
+$('release-control').addEventListener('click', () => link.releaseControl());
+$('stop').addEventListener('click', stop);
+
+// The operator's reading: the first standard-mapping gamepad, with the keyboard on top.
+let padPresent = null;
+function currentReading() {
+  const polled = pollGamepad();
+  const padId = polled ? polled.pad.id : null;
+  if (padId !== padPresent) {
+    padPresent = padId;
+    $('input-source').textContent = padId ? `gamepad: ${padId}` : 'no gamepad: keyboard';
+  }
+  return mergeReadings(polled?.reading ?? null, keyboard.reading());
+}
+
+function showReading(reading) {
+  const place = (dot, x, y) => {
+    dot.style.left = `${50 + 45 * x}%`;
+    dot.style.top = `${50 + 45 * y}%`;
+  };
+  place($('stick-left'), reading.axes[0], reading.axes[1]);
+  place($('stick-right'), reading.axes[2], reading.axes[3]);
+  const pressed = BUTTON_NAMES.filter((_, i) => reading.buttons[i]);
+  $('buttons-pressed').textContent = `buttons: ${pressed.length ? pressed.join(' ') : 'none'}`;
+}
+
+function frame(now) {
+  showReading(currentReading());
+  plots.draw(now);
+  view.draw();
+  requestAnimationFrame(frame);
+}
+
+// Sent from a timer, not from animation frames: browsers pause those in a hidden tab.
+setInterval(() => {
+  let sending = 'nothing (read-only)';
+  if (link.inControl && document.visibilityState === 'visible') {
+    const reading = currentReading();
+    if (stopLatched && isNeutral(reading)) stopLatched = false;
+    link.send(gamepadMessage(stopLatched ? neutralReading() : reading));
+    sending = stopLatched ? 'neutral: STOPPED, let go of every stick and key to drive again'
+      : 'the reading at 20 Hz';
+  } else if (link.inControl) {
+    sending = 'nothing: page hidden, the rover stops';
+  }
+  if ($('send-state').textContent !== sending) $('send-state').textContent = sending;
+  document.body.classList.toggle('stopped', stopLatched);
+}, SEND_PERIOD_MS);
+
+// A hidden page cannot see its operator: stop now rather than after the driver's timeout.
+document.addEventListener('visibilitychange', () => {
+  if (document.visibilityState === 'hidden' && link.inControl) link.stop();
+});
+
+showLinkState();
+if (token) {
+  link.connect();
+} else {
+  link.setState('disconnected');
+  showError('no token in the page address: open the address the server printed, ' +
+    'http://HOST:PORT/?token=…');
+}
+requestAnimationFrame(frame);

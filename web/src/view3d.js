@@ -1,0 +1,268 @@
+// The rover in 3-D (three.js), z up, x forward, y left as in the simulator (rover_mjcf.cpp).
+// Side view of one lever (Figure 3.3, chassis_geometry.hpp): the strut of length b from the center
+// axle to the joint, the lever of length a from the joint to the exterior axle, the bend γ between
+// them (γf = −p6, γr = +p7):
+//   c(γ) = sqrt(a² + b² − 2ab·cos γ)          distance of the exterior axle from the center axle
+//   α    = arccos((b² + c² − a²) / (2bc))     elevation of the strut above the axles' line
+// With the simulator's ground truth (status.truth) the rover stands where the simulator has it;
+// without (a real rover) it stands level at the origin with the joints at their measured angles.
+
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+export const GEOMETRY = {
+  joint_to_exterior_axle_m: 0.145,  // a
+  center_axle_to_joint_m: 0.413,    // b
+  wheel_radius_m: 0.125,            // r
+  track_width_m: 0.70,
+  wheel_width_m: 0.15,
+};
+
+const WHEELS = ['FL', 'FR', 'CL', 'CR', 'BL', 'BR'];
+const BLADES_PER_WHEEL = 12;
+const GROUND_SIZE_M = 200;
+
+export function axleDistance(bend_rad, g = GEOMETRY) {
+  const a = g.joint_to_exterior_axle_m, b = g.center_axle_to_joint_m;
+  return Math.sqrt(a * a + b * b - 2 * a * b * Math.cos(bend_rad));
+}
+
+export function strutElevation(axle_distance_m, g = GEOMETRY) {
+  const a = g.joint_to_exterior_axle_m, b = g.center_axle_to_joint_m, c = axle_distance_m;
+  return Math.acos(Math.max(-1, Math.min(1, (b * b + c * c - a * a) / (2 * b * c))));
+}
+
+// The joint above the line from the center axle to an exterior axle at (x, z) of the side view.
+export function jointPosition(axle_x, axle_z, g = GEOMETRY) {
+  const c = Math.hypot(axle_x, axle_z);
+  const alpha = strutElevation(c, g);
+  const ux = axle_x / c, uz = axle_z / c;
+  // The perpendicular that points up, for the front (u ≈ +x) and the rear (u ≈ −x) alike.
+  let nx = -uz, nz = ux;
+  if (nz < 0) { nx = -nx; nz = -nz; }
+  const b = g.center_axle_to_joint_m;
+  return [b * (Math.cos(alpha) * ux + Math.sin(alpha) * nx), b * (Math.cos(alpha) * uz + Math.sin(alpha) * nz)];
+}
+
+const finite = (v) => typeof v === 'number' && Number.isFinite(v);
+const finiteVector = (v, n) => Array.isArray(v) && v.length >= n && v.slice(0, n).every(finite);
+
+// The pose to draw, in the rover's frame (center axle at the origin) plus its place in the world.
+// `truth` keys (the simulator's GroundTruth): position_m, roll_pitch_yaw_rad, joint_angle_rad
+// (8: wheels' angles, then p6, p7), wheel_position_m (6 × [x, y, z]), wheel_angle_rad (6, optional).
+export function roverPose(status, g = GEOMETRY) {
+  const truth = status.truth;
+  const motor = (name) => status.motors?.[name]?.position_rad;
+  const joints = finiteVector(truth?.joint_angle_rad, 8) ? truth.joint_angle_rad : null;
+  const p6 = joints ? joints[6] : motor('AF');
+  const p7 = joints ? joints[7] : motor('AR');
+  const wheelAngles = finiteVector(truth?.wheel_angle_rad, 6) ? truth.wheel_angle_rad
+    : joints ? joints.slice(0, 6) : WHEELS.map((w) => (finite(motor(w)) ? motor(w) : 0));
+  const half = g.track_width_m / 2;
+
+  const fromTruth = truth && finiteVector(truth.position_m, 3) &&
+    finiteVector(truth.roll_pitch_yaw_rad, 3) && Array.isArray(truth.wheel_position_m) &&
+    truth.wheel_position_m.length >= 6 && truth.wheel_position_m.every((w) => finiteVector(w, 3));
+  if (fromTruth) {
+    const position = new THREE.Vector3(...truth.position_m);
+    const [roll, pitch, yaw] = truth.roll_pitch_yaw_rad;
+    // R = Rz(yaw)·Ry(pitch)·Rx(roll): three's 'ZYX' order.
+    const rotation = new THREE.Euler(roll, pitch, yaw, 'ZYX');
+    const toLocal = new THREE.Quaternion().setFromEuler(rotation).invert();
+    const wheels = truth.wheel_position_m.slice(0, 6)
+      .map((w) => new THREE.Vector3(...w).sub(position).applyQuaternion(toLocal));
+    return { source: 'truth', position, rotation, wheels, wheelAngles };
+  }
+
+  const level = (p, sign) => (finite(p) ? axleDistance(sign * p, g) : Math.sqrt(
+    g.center_axle_to_joint_m ** 2 - g.joint_to_exterior_axle_m ** 2));
+  const front = level(p6, -1), rear = level(p7, +1);
+  const wheels = [
+    [front, half], [front, -half], [0, half], [0, -half], [-rear, half], [-rear, -half],
+  ].map(([x, y]) => new THREE.Vector3(x, y, 0));
+  return {
+    source: 'joints',
+    position: new THREE.Vector3(0, 0, g.wheel_radius_m),
+    rotation: new THREE.Euler(0, 0, 0, 'ZYX'),
+    wheels, wheelAngles,
+  };
+}
+
+// A checkerboard of 0.5 m squares: without marks on the ground the rover's motion is invisible.
+// (A texture rather than GridHelper lines, which software renderers draw too faint to see.)
+function groundTexture() {
+  const canvas = document.createElement('canvas');
+  canvas.width = canvas.height = 64;
+  const g = canvas.getContext('2d');
+  g.fillStyle = '#c9a77c';
+  g.fillRect(0, 0, 64, 64);
+  g.fillStyle = '#b8966b';
+  g.fillRect(0, 0, 32, 32);
+  g.fillRect(32, 32, 32, 32);
+  const texture = new THREE.CanvasTexture(canvas);
+  texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+  texture.repeat.set(GROUND_SIZE_M / 1.0, GROUND_SIZE_M / 1.0);  // one 64 px tile = 1 m, 2 × 2 squares
+  texture.colorSpace = THREE.SRGBColorSpace;
+  texture.anisotropy = 8;
+  return texture;
+}
+
+function wheelMesh(g, materials) {
+  const wheel = new THREE.Group();
+  const r = g.wheel_radius_m, w = g.wheel_width_m;
+  wheel.add(new THREE.Mesh(new THREE.CylinderGeometry(r * 0.92, r * 0.92, w, 32), materials.wheel));
+  // Blades on the rim: they make the wheels' turning visible.
+  const blade = new THREE.BoxGeometry(0.012, w, r * 0.16);
+  for (let k = 0; k < BLADES_PER_WHEEL; ++k) {
+    const angle = (2 * Math.PI * k) / BLADES_PER_WHEEL;
+    const mesh = new THREE.Mesh(blade, materials.blade);
+    mesh.position.set(Math.sin(angle) * r * 0.92, 0, Math.cos(angle) * r * 0.92);
+    mesh.rotation.y = angle;
+    wheel.add(mesh);
+  }
+  const holder = new THREE.Group();  // orientation of the axle; the wheel spins inside it
+  holder.add(wheel);
+  holder.userData.spin = wheel;
+  return holder;
+}
+
+// A rod from one point to another (a strut, a lever, an axle).
+function setRod(mesh, from, to) {
+  const direction = new THREE.Vector3().subVectors(to, from);
+  mesh.position.copy(from).addScaledVector(direction, 0.5);
+  mesh.scale.set(1, Math.max(direction.length(), 1e-6), 1);
+  mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), direction.normalize());
+}
+
+export class RoverView {
+  constructor(container, g = GEOMETRY) {
+    this.container = container;
+    this.g = g;
+    this.dirty = true;
+    try {
+      this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    } catch (err) {
+      container.textContent = `No 3-D view: this browser gives no WebGL context (${err.message}).`;
+      container.classList.add('unavailable');
+      return;
+    }
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    container.appendChild(this.renderer.domElement);
+
+    const scene = new THREE.Scene();
+    scene.background = new THREE.Color(0xe8e4dc);
+    this.scene = scene;
+    scene.add(new THREE.HemisphereLight(0xffffff, 0x8d7a66, 2.2));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+    sun.position.set(3, -2, 5);
+    scene.add(sun);
+
+    const ground = new THREE.Mesh(new THREE.PlaneGeometry(GROUND_SIZE_M, GROUND_SIZE_M),
+      new THREE.MeshLambertMaterial({ map: groundTexture() }));
+    scene.add(ground);
+
+    this.camera = new THREE.PerspectiveCamera(45, 1, 0.05, 200);
+    this.camera.up.set(0, 0, 1);
+    this.camera.position.set(-1.3, -1.7, 1.0);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.target.set(0, 0, 0.15);
+    this.controls.addEventListener('change', () => { this.dirty = true; });
+
+    this.buildRover();
+    this.update({});  // level, joints vertical, until the first status arrives
+    this.resize();
+    new ResizeObserver(() => this.resize()).observe(container);
+  }
+
+  buildRover() {
+    const g = this.g;
+    const materials = {
+      body: new THREE.MeshStandardMaterial({ color: 0xd8d8d0, metalness: 0.2, roughness: 0.6 }),
+      rod: new THREE.MeshStandardMaterial({ color: 0x505860, metalness: 0.5, roughness: 0.4 }),
+      joint: new THREE.MeshStandardMaterial({ color: 0xc0392b }),
+      wheel: new THREE.MeshStandardMaterial({ color: 0x9aa0a6, metalness: 0.4, roughness: 0.5 }),
+      blade: new THREE.MeshStandardMaterial({ color: 0x2d3436 }),
+    };
+    const rover = new THREE.Group();
+    this.rover = rover;
+    this.scene.add(rover);
+    const half = g.track_width_m / 2;
+    const bodyWidth = g.track_width_m - g.wheel_width_m - 0.1;
+    const body = new THREE.Mesh(new THREE.BoxGeometry(0.5, bodyWidth, 0.14), materials.body);
+    body.position.set(0, 0, 0.17);
+    rover.add(body);
+    const rod = (radius) => {
+      const mesh = new THREE.Mesh(new THREE.CylinderGeometry(radius, radius, 1, 12), materials.rod);
+      rover.add(mesh);
+      return mesh;
+    };
+    this.centerAxle = rod(0.03);
+    setRod(this.centerAxle, new THREE.Vector3(0, half - 0.08, 0), new THREE.Vector3(0, -half + 0.08, 0));
+    this.levers = ['front', 'rear'].map(() => {
+      const joint = new THREE.Mesh(new THREE.CylinderGeometry(0.045, 0.045, 0.12, 20), materials.joint);
+      rover.add(joint);
+      return { strut: rod(0.03), lever: rod(0.03), axle: rod(0.04), joint };
+    });
+    this.wheels = WHEELS.map(() => {
+      const wheel = wheelMesh(g, materials);
+      rover.add(wheel);
+      return wheel;
+    });
+  }
+
+  update(status) {
+    if (!this.renderer) return;
+    const pose = roverPose(status, this.g);
+    const moved = new THREE.Vector3().subVectors(pose.position, this.rover.position);
+    this.rover.position.copy(pose.position);
+    this.rover.rotation.copy(pose.rotation);
+    // The camera follows the rover, keeping the operator's angle and distance.
+    this.camera.position.add(moved);
+    this.controls.target.add(moved);
+    this.controls.update();
+
+    const axleOf = (left, right) => new THREE.Vector3().addVectors(pose.wheels[left], pose.wheels[right]).multiplyScalar(0.5);
+    const ends = [axleOf(0, 1), axleOf(4, 5)];
+    const center = new THREE.Vector3(0, 0, 0);
+    ends.forEach((axle, i) => {
+      const [jx, jz] = jointPosition(axle.x, axle.z, this.g);
+      const joint = new THREE.Vector3(jx, axle.y, jz);
+      const parts = this.levers[i];
+      setRod(parts.strut, center, joint);
+      setRod(parts.lever, joint, axle);
+      parts.joint.position.copy(joint);
+      const left = pose.wheels[i === 0 ? 0 : 4], right = pose.wheels[i === 0 ? 1 : 5];
+      const inward = 0.08 / this.g.track_width_m;
+      setRod(parts.axle, left.clone().lerp(right, inward), right.clone().lerp(left, inward));
+    });
+    pose.wheels.forEach((position, i) => {
+      const holder = this.wheels[i];
+      holder.position.copy(position);
+      // The exterior axles roll about their own x (θ): orient the wheel along its axle.
+      const partner = pose.wheels[i % 2 === 0 ? i + 1 : i - 1];
+      const axis = i % 2 === 0 ? position.clone().sub(partner) : partner.clone().sub(position);
+      if (axis.lengthSq() > 1e-9) holder.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), axis.normalize());
+      // A positive wheel angle is a turn about +y: the top of the wheel moves forward.
+      holder.userData.spin.rotation.y = finite(pose.wheelAngles[i]) ? pose.wheelAngles[i] : 0;
+    });
+    this.source = pose.source;
+    this.dirty = true;
+  }
+
+  resize() {
+    if (!this.renderer) return;
+    const width = Math.max(1, this.container.clientWidth);
+    const height = Math.max(1, this.container.clientHeight);
+    this.renderer.setSize(width, height);
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    this.dirty = true;
+  }
+
+  // Called every animation frame; renders only when something changed.
+  draw() {
+    if (!this.renderer || !this.dirty) return;
+    this.renderer.render(this.scene, this.camera);
+    this.dirty = false;
+  }
+}

@@ -1,0 +1,240 @@
+// The console in a real browser (Debian's chromium, headless, via playwright-core) against the
+// real server: `marsokhod run` — the simulator, the driver and the link server in one process,
+// in real time. Every wait is bounded and waits for a condition, never for a fixed time.
+//   npm test            (in web/; builds dist/ first)
+//   MARSOKHOD_BIN=…  CHROMIUM_PATH=…   to use other binaries
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import http from 'node:http';
+import {
+  checkPrerequisites, startServer, launchBrowser, openConsole, setPad, latestStatus,
+  waitForStatus, waitForLinkState, screenshot, WHEELS,
+} from './harness.mjs';
+
+const TOKEN = 'console-test-token-0123456789';
+const STICK_UP = [0, -1, 0, 0];
+const CENTERED = [0, 0, 0, 0];
+const DRIVEN_M = 0.05;  // a displacement no noise or settling makes: the rover drove
+const STARTUP_TIMEOUT_MS = 20000;
+const MOVE_TIMEOUT_MS = 8000;
+// The server's driver stops the rover after 0.5 s without input; a stop reaches it at once.
+const STOP_TIMEOUT_MS = 1500;
+const STILL_DUTY = 0.02;
+
+let server;
+let browser;
+const pages = [];
+
+const wheelsDriveForward = (s) => ['FL', 'FR', 'CL', 'CR', 'BL', 'BR'].every((w) => s.motors[w].duty > 0.1);
+const wheelsStill = (s, limit) => ['FL', 'FR', 'CL', 'CR', 'BL', 'BR'].every((w) => Math.abs(s.motors[w].duty) < limit);
+
+async function open(options) {
+  const page = await openConsole(browser, server.url, options);
+  pages.push(page);
+  return page;
+}
+
+async function takeControl(page) {
+  await page.click('#take-control');
+  await waitForLinkState(page, 'in-control', 3000);
+}
+
+// Drives forward with the scripted pad until the rover has moved and every wheel has duty.
+async function driveForward(page) {
+  const from = (await latestStatus(page)).truth.position_m;
+  await setPad(page, { axes: STICK_UP });
+  await waitForStatus(page, 'the rover drove forward', (s, a) =>
+    Math.hypot(s.truth.position_m[0] - a[0], s.truth.position_m[1] - a[1]) > a[2] &&
+    ['FL', 'FR', 'CL', 'CR', 'BL', 'BR'].every((w) => s.motors[w].duty > 0.1),
+  [from[0], from[1], DRIVEN_M], MOVE_TIMEOUT_MS);
+}
+
+before(async () => {
+  checkPrerequisites();
+  server = await startServer(TOKEN);
+  browser = await launchBrowser();
+});
+
+after(async () => {
+  for (const page of pages) await page.context().close().catch(() => {});
+  await browser?.close();
+  if (server) await server.stop();
+});
+
+test('the page loads and shows live status', async () => {
+  const page = await open();
+  await waitForLinkState(page, 'read-only', 5000);
+  await waitForStatus(page, 'the driver finished its startup', (s) => s.mode === 'driving', null, STARTUP_TIMEOUT_MS);
+  const first = await latestStatus(page);
+  const shownFirst = await page.textContent('#st-mission');
+  await waitForStatus(page, 'mission time advanced by 0.3 s', (s, t) => s.mission_time_s > t + 0.3,
+    first.mission_time_s, 3000);
+  assert.notEqual(await page.textContent('#st-mission'), shownFirst, 'the shown mission time changes');
+  assert.match(await page.textContent('#st-voltage'), /^\d+\.\d \(\d+\.\d\) V$/);
+  const header = await page.$$eval('#motor-table thead th', (ths) => ths.map((th) => th.textContent));
+  assert.deepEqual(header.slice(1), ['FL', 'FR', 'CL', 'CR', 'BL', 'BR', 'AF', 'AR']);
+  const rows = await page.$$eval('#motor-table tbody th', (ths) => ths.map((th) => th.textContent));
+  assert.deepEqual(rows, ['pos', 'vel', 'load', 'duty', 'cmd']);
+  assert.match(await page.textContent('#motor-table tbody tr:nth-child(1) td:nth-child(8)'), /^-?\d+\.\d{3}$/,
+    'AF position shown');
+  assert.ok(first.truth, 'marsokhod run attaches the simulator truth');
+  assert.equal(await page.textContent('#view-source'), '(simulator ground truth)');
+  assert.equal(await page.locator('#view3d canvas').count(), 1, 'the 3-D view has its canvas');
+  assert.equal(await page.locator('#plot-area .uplot').count(), 4, 'four charts');
+  assert.equal(await page.isDisabled('#config-apply'), true, 'configuration needs control');
+  await screenshot(page, 'console-read-only.png');
+  assert.deepEqual(page.problems, []);
+});
+
+test('a scripted gamepad drives the rover forward', async () => {
+  const page = await open({ gamepad: true });
+  await waitForLinkState(page, 'read-only', 5000);
+  assert.match(await page.textContent('#input-source'), /scripted test pad/);
+  await takeControl(page);
+  await driveForward(page);
+  const status = await latestStatus(page);
+  assert.ok(status.targets.v1_radps > 2, `full deflection asks for full speed, got ${status.targets.v1_radps}`);
+  assert.equal(status.targets.v2_radps, 0);
+  await screenshot(page, 'console-driving-gamepad.png');
+  await setPad(page, { axes: CENTERED });
+  await waitForStatus(page, 'the wheels stopped after the stick was centered', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  assert.deepEqual(page.problems, []);
+});
+
+test('the keyboard drives the rover (W), and the configuration reaches the server', async () => {
+  const page = pages[1];  // the gamepad's page holds control; its pad is centered
+  const form = page.locator('#config-form');
+  await form.locator('input[name=speed_scale]').fill('1');
+  await form.locator('select[name=slant_response]').selectOption('on');
+  await page.click('#config-apply');
+  assert.match(await page.textContent('#config-result'),
+    /^sent \{"behaviours":\{"slant_response":true\},"speed_scale":1\}$/);
+
+  const from = (await latestStatus(page)).truth.position_m;
+  await page.locator('body').click({ position: { x: 5, y: 300 } });  // the keyboard's focus on the page
+  await page.keyboard.down('KeyW');
+  await waitForStatus(page, 'W drove the rover forward', (s, a) =>
+    s.targets.v1_radps > 2 && Math.hypot(s.truth.position_m[0] - a[0], s.truth.position_m[1] - a[1]) > a[2],
+  [from[0], from[1], DRIVEN_M], MOVE_TIMEOUT_MS);
+  await screenshot(page, 'console-driving-keyboard.png');
+  await page.keyboard.up('KeyW');
+  await waitForStatus(page, 'the wheels stopped after W was released', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  const error = await page.textContent('#link-error');
+  assert.doesNotMatch(error, /speed_scale|slant_response|behaviours/, 'the server took the configuration');
+  assert.deepEqual(page.problems, []);
+});
+
+test('STOP (button or space bar) stops the rover while the stick is still pushed', async () => {
+  const page = pages[1];
+  for (const how of ['button', 'space']) {
+    await setPad(page, { axes: CENTERED });
+    await waitForStatus(page, 'the console sends again', (s) => s.operator_timeout === false, null, 2000);
+    await driveForward(page);
+    if (how === 'button') await page.click('#stop');
+    else await page.keyboard.press('Space');
+    await waitForStatus(page, `STOP (${how}) brought every wheel duty to 0`, wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+    const stopped = await latestStatus(page);
+    assert.equal(stopped.targets.v1_radps, 0, 'no drive target after STOP');
+    assert.match(await page.textContent('#send-state'), /STOPPED/);
+    if (how === 'button') await screenshot(page, 'console-stopped.png');
+  }
+  // Centering the stick re-arms the console: pushing it drives again.
+  await setPad(page, { axes: CENTERED });
+  await page.waitForFunction(() => !/STOPPED/.test(document.getElementById('send-state').textContent), null, { timeout: 2000 });
+  await driveForward(page);
+  await setPad(page, { axes: CENTERED });
+  assert.deepEqual(page.problems, []);
+});
+
+test('a second console is read-only until it takes control', async () => {
+  const first = pages[1];  // in control, driving forward with the pad just centered
+  const second = await open({ gamepad: true });
+  await waitForLinkState(second, 'read-only', 5000);
+  await waitForStatus(first, 'the rover stands still', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  assert.match(await second.textContent('#link-state'), /client \d+ controls/);
+
+  // Its stick pushed, the read-only console sends nothing; a gamepad message sent anyway is refused.
+  await setPad(second, { axes: STICK_UP });
+  assert.match(await second.textContent('#send-state'), /read-only/);
+  await second.evaluate(() => window.marsokhod.link.send({
+    type: 'gamepad', axes: [0, -1, 0, 0], buttons: new Array(17).fill(false),
+  }));
+  await second.waitForFunction(() => /read-only: take control first/.test(
+    document.getElementById('link-error').textContent), null, { timeout: 2000 });
+  const still = await latestStatus(first);
+  assert.ok(WHEELS.every((w) => Math.abs(still.motors[w].duty) < 0.05), 'a read-only console does not drive');
+
+  await takeControl(second);
+  await waitForLinkState(first, 'read-only', 2000);
+  assert.match(await first.textContent('#link-error'), /lost control/);
+  const from = (await latestStatus(second)).truth.position_m;
+  await waitForStatus(second, 'the second console drives after take_control', (s, a) =>
+    Math.hypot(s.truth.position_m[0] - a[0], s.truth.position_m[1] - a[1]) > a[2],
+  [from[0], from[1], DRIVEN_M], MOVE_TIMEOUT_MS);
+  await screenshot(second, 'console-second-in-control.png');
+  await screenshot(first, 'console-first-lost-control.png');
+  await setPad(second, { axes: CENTERED });
+  assert.deepEqual(second.problems, []);
+});
+
+test('closing the controlling page stops the rover within 0.5 s plus a cycle', async (t) => {
+  const controller = pages[2];  // the second console holds control
+  const watcher = pages[0];     // read-only since the first test
+  await driveForward(controller);
+  await waitForStatus(watcher, 'the watcher sees the rover drive', wheelsDriveForward, null, 2000);
+  const closedAt = Date.now();
+  await controller.context().close();
+  pages.splice(2, 1);
+  await waitForStatus(watcher, 'the drive target is zero after the controller left', (s) =>
+    s.targets.v1_radps === 0, null, 500 + 200);
+  const targetZeroMs = Date.now() - closedAt;
+  await waitForStatus(watcher, 'every wheel duty reached 0', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  const stillMs = Date.now() - closedAt;
+  assert.ok(targetZeroMs <= 700, `target zero after ${targetZeroMs} ms`);
+  await waitForLinkState(watcher, 'read-only', 1000);
+  assert.match(await watcher.textContent('#link-state'), /nobody controls/);
+  await screenshot(watcher, 'console-controller-closed.png');
+
+  // Take control and give it back: nobody controls again.
+  await takeControl(watcher);
+  assert.equal(await watcher.isDisabled('#config-apply'), false, 'the controller may configure');
+  await watcher.click('#release-control');
+  await waitForLinkState(watcher, 'read-only', 2000);
+  assert.match(await watcher.textContent('#link-state'), /nobody controls/);
+  t.diagnostic(`target zero after ${targetZeroMs} ms, duties zero after ${stillMs} ms`);
+});
+
+test('a wrong token is refused', async () => {
+  const wrong = server.url.replace(/token=[^&]+/, 'token=not-the-right-token-000');
+  const page = await openConsole(browser, wrong);
+  pages.push(page);
+  await waitForLinkState(page, 'disconnected', 5000);
+  await page.waitForFunction(() => /refused the connection/.test(
+    document.getElementById('link-error').textContent), null, { timeout: 3000 });
+  assert.equal(await page.isDisabled('#take-control'), true);
+  await screenshot(page, 'console-wrong-token.png');
+
+  const none = await openConsole(browser, server.url.replace(/\?.*$/, ''));
+  pages.push(none);
+  await none.waitForFunction(() => /no token in the page address/.test(
+    document.getElementById('link-error').textContent), null, { timeout: 3000 });
+
+  // The server's answer itself: HTTP 401, no upgrade.
+  const code = await new Promise((resolve, reject) => {
+    const request = http.get({
+      host: '127.0.0.1', port: server.port, path: '/ws?token=not-the-right-token-000', timeout: 3000,
+      headers: { Connection: 'Upgrade', Upgrade: 'websocket', 'Sec-WebSocket-Version': '13',
+        'Sec-WebSocket-Key': 'dGhlIHNhbXBsZSBub25jZQ==' },
+    }, (response) => { response.resume(); resolve(response.statusCode); });
+    request.on('upgrade', () => resolve(101));
+    request.on('timeout', () => request.destroy(new Error('no answer within 3 s')));
+    request.on('error', reject);
+  });
+  assert.equal(code, 401);
+});
+
+test('the server exits cleanly on SIGTERM', async () => {
+  const result = await server.stop();
+  assert.deepEqual(result, { code: 0, signal: null }, `marsokhod run said:\n${server.output.text}`);
+});
