@@ -81,8 +81,8 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   CLI::App* run_cmd = cli.add_subcommand(
       "run", "the simulated rover and the driver in real time, with the console (the default)");
   auto add_console = [](CLI::App* cmd, ConsoleArgs& c) {
-    cmd->add_option("--listen", c.listen, "the console's ADDR:PORT (default 127.0.0.1:8080)");
-    cmd->add_option("--token", c.token, "the console's access token (default: generated)");
+    cmd->add_option("--listen", c.listen, "the console's ADDR:PORT (default: [console] listen)");
+    cmd->add_option("--token", c.token, "the console's access token (default: [console] token, or generated)");
     cmd->add_option("--web", c.web, "the console's build folder (default web/dist)");
     cmd->add_flag("--no-console", c.no_console, "no HTTP/WebSocket server");
     cmd->add_option("--status-rate", c.status_rate_hz, "status messages per second")

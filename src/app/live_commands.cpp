@@ -68,10 +68,11 @@ class ConsoleLink {
   ConsoleLink(const Params& params, const ConsoleArgs& args, std::ostream& out) : params_(&params) {
     if (args.no_console) return;
     link::ServerOptions options;
-    options.listen = link::parse_listen_address(args.listen);
+    const ConsoleParams& c = params.console;
+    options.listen = link::parse_listen_address(args.listen.empty() ? c.listen : args.listen);
     options.static_dir = find_web_dist(args.web);
-    options.token = args.token;
-    options.status_period_s = 1.0 / args.status_rate_hz;
+    options.token = args.token.empty() ? c.token : args.token;
+    options.status_period_s = 1.0 / (args.status_rate_hz > 0.0 ? args.status_rate_hz : c.status_rate_hz);
     server_ = std::make_unique<link::LinkServer>(params, options);
     server_->start();
     out << "console: " << server_->console_url() << "\n";
@@ -146,7 +147,10 @@ int run_live(const RunArgs& args, const Params& params, const std::filesystem::p
   install_signal_handlers();
   const auto start = Clock::now();
   const auto period = std::chrono::microseconds(session->cycle_us());
-  const int status_every = std::max(1, static_cast<int>(std::lround(1.0 / (params.cycle.period_s * args.console.status_rate_hz))));
+  const double rate_hz = args.console.status_rate_hz > 0.0 ? args.console.status_rate_hz
+                                                           : params.console.status_rate_hz;
+  const int status_every =
+      std::max(1, static_cast<int>(std::lround(1.0 / (params.cycle.period_s * rate_hz))));
   std::size_t next_fault = 0;
   for (std::uint64_t k = 0; !g_stop; ++k) {
     std::this_thread::sleep_until(start + period * static_cast<std::int64_t>(k));

@@ -14,12 +14,13 @@
 
 namespace marsokhod::app {
 
+// Empty or zero: the configuration's [console] values.
 struct ConsoleArgs {
-  std::string listen = "127.0.0.1:8080";
-  std::string token;            // empty: generated
+  std::string listen;
+  std::string token;
   std::string web;              // the console's build; empty: web/dist of the working folder or source tree
   bool no_console = false;
-  double status_rate_hz = 20.0;
+  double status_rate_hz = 0.0;
 };
 
 struct RunArgs {

@@ -102,6 +102,22 @@ bool ConfigReader::boolean(std::string_view key) {
   return node->value<bool>().value_or(false);
 }
 
+std::string ConfigReader::text(std::string_view key, std::size_t max_length) {
+  const toml::node* node = find(key, "a string");
+  if (node == nullptr) return {};
+  const auto* value = node->as_string();
+  if (value == nullptr) {
+    problem(key_name(key) + ": " + show(*node) + " is not a string" + where(*node));
+    return {};
+  }
+  if (value->get().size() > max_length) {
+    problem(key_name(key) + ": longer than " + std::to_string(max_length) + " characters" +
+            where(*node));
+    return {};
+  }
+  return value->get();
+}
+
 std::string ConfigReader::choice(std::string_view key,
                                  std::initializer_list<std::string_view> allowed) {
   std::string options;

@@ -23,6 +23,7 @@ class ConfigReader {
   double number(std::string_view key, double min, double max);
   int integer(std::string_view key, int min, int max);
   bool boolean(std::string_view key);
+  std::string text(std::string_view key, std::size_t max_length);
   std::string choice(std::string_view key, std::initializer_list<std::string_view> allowed);
   std::vector<double> numbers(std::string_view key, double min, double max, std::size_t min_count,
                               std::size_t max_count);

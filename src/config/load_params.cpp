@@ -202,6 +202,15 @@ SafetyParams read_safety(ConfigReader r) {
   return s;
 }
 
+ConsoleParams read_console(ConfigReader r) {
+  ConsoleParams c;
+  c.listen = r.text("listen", 64);
+  c.token = r.text("token", 256);
+  c.status_rate_hz = r.number("status_rate_hz", 1.0, 64.0);
+  r.reject_unknown_keys();
+  return c;
+}
+
 }  // namespace
 
 ConfigError::ConfigError(const std::string& source, std::vector<std::string> problems)
@@ -238,6 +247,7 @@ Params parse_params(std::string_view toml_text, const std::string& source) {
   p.gaits = read_gaits(r.table("gaits"));
   p.behaviours = read_behaviours(r.table("behaviours"));
   p.safety = read_safety(r.table("safety"));
+  p.console = read_console(r.table("console"));
   r.reject_unknown_keys();
   if (problems.empty()) problems = consistency_problems(p);
   if (!problems.empty()) throw ConfigError(source, std::move(problems));

@@ -182,6 +182,13 @@ struct SafetyParams {
   int missed_responses_limit = 3;          // consecutive missing responses ⇒ fault, rover stopped
 };
 
+// The operator console's link (src/link): command-line options override these.
+struct ConsoleParams {
+  std::string listen = "127.0.0.1:8080";  // ADDR:PORT of the HTTP/WebSocket server
+  std::string token;                      // empty: a fresh random token at every start
+  double status_rate_hz = 20.0;           // status messages per second to each console
+};
+
 struct Params {
   GeometryParams geometry;
   CycleParams cycle;
@@ -207,6 +214,7 @@ struct Params {
   GaitParams gaits;
   BehaviourParams behaviours;
   SafetyParams safety;
+  ConsoleParams console;
 };
 
 }  // namespace marsokhod

@@ -108,6 +108,15 @@ TEST(LoadParams, ShippedFileMatchesTheThesisDefaults) {
   EXPECT_EQ(p.behaviours.axle_placement_load_radps, d.behaviours.axle_placement_load_radps);
 }
 
+TEST(LoadParams, ConsoleSection) {
+  const Params p = load_params(kShippedFile);
+  EXPECT_EQ(p.console.listen, "127.0.0.1:8080");
+  EXPECT_EQ(p.console.token, "");
+  EXPECT_EQ(p.console.status_rate_hz, 20.0);
+  const std::string e = problem_of(with_value("[console]", "token", "42"));
+  EXPECT_NE(e.find("console.token: 42 is not a string"), std::string::npos) << e;
+}
+
 TEST(LoadParams, BooleanMustBeABoolean) {
   const std::string e = problem_of(with_value("[behaviours]", "slant_response", "1"));
   EXPECT_NE(e.find("behaviours.slant_response: 1 is not a boolean; expected true or false"),
