@@ -8,12 +8,49 @@ namespace marsokhod::runner {
 namespace {
 
 constexpr double kStandstillRadps = 0.05;  // every shaft slower than this: standing
+constexpr double kTimeEpsilonS = 1e-9;
 
 double bound_excess(double p, double min, double max) {
   return std::max({0.0, min - p, p - max});
 }
 
 }  // namespace
+
+const std::vector<std::string>& run_metric_names() {
+  static const std::vector<std::string> names = {
+      "distance_m", "forward_distance_m", "path_length_m", "yaw_change_rad", "climb_m",
+      "mean_speed_mps", "max_voltage_drop_v", "min_supply_v", "max_abs_duty", "min_max_duty",
+      "max_joint_bound_excess_rad", "final_front_joint_rad", "final_rear_joint_rad",
+      "final_front_joint_max_rad", "final_rear_joint_min_rad", "final_joint_error_rad", "mean_abs_slip_mps", "max_slip_mps", "gait_state_changes",
+      "operator_timeouts", "driver_faults", "malformed_frames", "brownouts", "driver_restarts",
+      "energy_used_j", "final_max_abs_duty", "time_to_motors_off_s", "time_to_standstill_s"};
+  return names;
+}
+
+const std::vector<std::string>& phase_metric_names() {
+  static const std::vector<std::string> names = {
+      "duration_s", "distance_m", "forward_distance_m", "path_length_m", "mean_speed_mps",
+      "yaw_change_rad", "yaw_rate_mean_radps", "climb_m", "energy_used_j", "mean_abs_slip_mps",
+      "max_voltage_drop_v", "final_front_joint_rad", "final_rear_joint_rad",
+      "final_joint_error_rad", "max_joint_error_rad"};
+  return names;
+}
+
+bool is_metric_name(const std::string& name, const std::vector<Phase>& phases) {
+  const auto has = [](const std::vector<std::string>& names, const std::string& n) {
+    return std::find(names.begin(), names.end(), n) != names.end();
+  };
+  if (has(run_metric_names(), name)) return true;
+  const std::size_t dot = name.find('.');
+  if (dot == std::string::npos) return false;
+  const std::string phase = name.substr(0, dot);
+  return std::any_of(phases.begin(), phases.end(), [&](const Phase& p) { return p.name == phase; }) &&
+         has(phase_metric_names(), name.substr(dot + 1));
+}
+
+Metrics::Metrics(const Params& params, const std::vector<Phase>& phases) : params_(&params) {
+  for (const Phase& p : phases) phases_.push_back({p, std::nullopt, std::nullopt, 0.0, 0.0});
+}
 
 void Metrics::mark_stop(double time_s) {
   if (!stop_mark_s_) stop_mark_s_ = time_s;
@@ -22,6 +59,42 @@ void Metrics::mark_stop(double time_s) {
 void Metrics::set_joint_targets(std::optional<double> front_rad, std::optional<double> rear_rad) {
   front_target_rad_ = front_rad;
   rear_target_rad_ = rear_rad;
+}
+
+double Metrics::joint_error_rad(const sim::GroundTruth& t) const {
+  double error = 0.0;
+  if (front_target_rad_) error = std::max(error, std::abs(t.joint_angle_rad[kFrontJoint] - *front_target_rad_));
+  if (rear_target_rad_) error = std::max(error, std::abs(t.joint_angle_rad[kRearJoint] - *rear_target_rad_));
+  return error;
+}
+
+Metrics::Snapshot Metrics::snapshot(const Session& session, double time_s) const {
+  const sim::GroundTruth t = session.rover().truth();
+  Snapshot s;
+  s.time_s = time_s;
+  s.position_m = last_position_m_;
+  s.yaw_rad = yaw_unwrapped_rad_;
+  s.path_length_m = path_length_m_;
+  s.energy_j = session.rover().energy_used_j();
+  s.slip_sum = slip_sum_;
+  s.slip_samples = slip_samples_;
+  s.joint_rad = {t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint]};
+  s.joint_error_rad = joint_error_rad(t);
+  return s;
+}
+
+void Metrics::observe_phases(const Session& session, double time_s,
+                             std::optional<double> voltage_drop_v, double joint_error_rad) {
+  for (PhaseWindow& w : phases_) {
+    if (!w.start && time_s >= w.phase.from_s - kTimeEpsilonS) w.start = snapshot(session, time_s);
+    if (!w.start || w.end) continue;
+    if (time_s >= w.phase.to_s - kTimeEpsilonS) {
+      w.end = snapshot(session, time_s);
+      continue;
+    }
+    w.max_joint_error_rad = std::max(w.max_joint_error_rad, joint_error_rad);
+    if (voltage_drop_v) w.max_voltage_drop_v = std::max(w.max_voltage_drop_v, *voltage_drop_v);
+  }
 }
 
 void Metrics::observe(const Session& session, const CycleRecord& cycle) {
@@ -50,14 +123,22 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
     ++slip_samples_;
   }
   // Standing: no motor is driven and the body neither moves nor turns.
-  bool moving = std::hypot(t.velocity_mps[0], t.velocity_mps[1]) > 0.01 ||
-                std::abs(t.yaw_rate_radps) > kStandstillRadps;
-  for (double d : session.rover().firmware().duty()) moving = moving || d != 0.0;
-  if (moving) last_motion_s_ = now;
-  if (!cycle.driver_running) return;
+  bool driven = false;
+  for (double d : session.rover().firmware().duty()) driven = driven || d != 0.0;
+  if (driven) last_duty_s_ = now;
+  if (driven || std::hypot(t.velocity_mps[0], t.velocity_mps[1]) > 0.01 ||
+      std::abs(t.yaw_rate_radps) > kStandstillRadps) {
+    last_motion_s_ = now;
+  }
+  std::optional<double> voltage_drop_v;
   const driver::DriverStatus& s = session.status();
-  if (s.mode == driver::DriverMode::kDriving && s.reference_supply_v > 0.0) {
-    max_voltage_drop_v_ = std::max(max_voltage_drop_v_, s.reference_supply_v - s.supply_v);
+  if (cycle.driver_running && s.mode == driver::DriverMode::kDriving && s.reference_supply_v > 0.0) {
+    voltage_drop_v = s.reference_supply_v - s.supply_v;
+  }
+  observe_phases(session, now, voltage_drop_v, joint_error_rad(t));
+  if (!cycle.driver_running) return;
+  if (voltage_drop_v) {
+    max_voltage_drop_v_ = std::max(max_voltage_drop_v_, *voltage_drop_v);
     min_max_duty_ = std::min(min_max_duty_, s.max_duty);
   }
   for (const auto& m : s.motors) max_abs_duty_ = std::max(max_abs_duty_, std::abs(m.duty));
@@ -67,6 +148,32 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   was_timed_out_ = s.operator_timeout;
   faults_ = std::max(faults_, static_cast<double>(s.faults.size()));
   malformed_ = static_cast<double>(s.bus.malformed);
+}
+
+void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
+                                std::map<std::string, double>& m) {
+  const Snapshot& start = *w.start;
+  const std::string p = w.phase.name + ".";
+  const double duration_s = end.time_s - start.time_s;
+  const double dx = end.position_m[0] - start.position_m[0];
+  const double dy = end.position_m[1] - start.position_m[1];
+  const double path_m = end.path_length_m - start.path_length_m;
+  const std::uint64_t samples = end.slip_samples - start.slip_samples;
+  m[p + "duration_s"] = duration_s;
+  m[p + "distance_m"] = std::hypot(dx, dy);
+  m[p + "forward_distance_m"] = dx;
+  m[p + "path_length_m"] = path_m;
+  m[p + "mean_speed_mps"] = duration_s > 0.0 ? path_m / duration_s : 0.0;
+  m[p + "yaw_change_rad"] = end.yaw_rad - start.yaw_rad;
+  m[p + "yaw_rate_mean_radps"] = duration_s > 0.0 ? (end.yaw_rad - start.yaw_rad) / duration_s : 0.0;
+  m[p + "climb_m"] = end.position_m[2] - start.position_m[2];
+  m[p + "energy_used_j"] = end.energy_j - start.energy_j;
+  m[p + "mean_abs_slip_mps"] = samples > 0 ? (end.slip_sum - start.slip_sum) / static_cast<double>(samples) : 0.0;
+  m[p + "max_voltage_drop_v"] = w.max_voltage_drop_v;
+  m[p + "final_front_joint_rad"] = end.joint_rad[0];
+  m[p + "final_rear_joint_rad"] = end.joint_rad[1];
+  m[p + "final_joint_error_rad"] = end.joint_error_rad;
+  m[p + "max_joint_error_rad"] = w.max_joint_error_rad;
 }
 
 std::map<std::string, double> Metrics::finish(const Session& session) const {
@@ -86,10 +193,9 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
   m["max_joint_bound_excess_rad"] = max_bound_excess_rad_;
   m["final_front_joint_rad"] = t.joint_angle_rad[kFrontJoint];
   m["final_rear_joint_rad"] = t.joint_angle_rad[kRearJoint];
-  double error = 0.0;
-  if (front_target_rad_) error = std::max(error, std::abs(t.joint_angle_rad[kFrontJoint] - *front_target_rad_));
-  if (rear_target_rad_) error = std::max(error, std::abs(t.joint_angle_rad[kRearJoint] - *rear_target_rad_));
-  m["final_joint_error_rad"] = error;
+  m["final_front_joint_max_rad"] = session.status().joint_bounds.front_max_rad;
+  m["final_rear_joint_min_rad"] = session.status().joint_bounds.rear_min_rad;
+  m["final_joint_error_rad"] = joint_error_rad(t);
   m["mean_abs_slip_mps"] = slip_samples_ > 0 ? slip_sum_ / static_cast<double>(slip_samples_) : 0.0;
   m["max_slip_mps"] = max_slip_mps_;
   m["gait_state_changes"] = gait_state_changes_;
@@ -103,7 +209,12 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
   for (double d : session.rover().firmware().duty()) final_duty = std::max(final_duty, std::abs(d));
   m["final_max_abs_duty"] = final_duty;
   if (stop_mark_s_) {
+    m["time_to_motors_off_s"] = std::max(0.0, last_duty_s_ - *stop_mark_s_);
     m["time_to_standstill_s"] = std::max(0.0, last_motion_s_ - *stop_mark_s_);
+  }
+  for (const PhaseWindow& w : phases_) {
+    if (!w.start) continue;  // the run ended before the phase began
+    add_phase_metrics(w, w.end ? *w.end : snapshot(session, session.time_s()), m);
   }
   return m;
 }

@@ -1,19 +1,48 @@
 // The named numbers a scenario reports and checks, units in their names. Collected every cycle
 // from the driver's status and the simulator's ground truth.
+//
+// For the whole run (run_metric_names()): distance_m, forward_distance_m (along the start
+// heading, +x), path_length_m, yaw_change_rad, climb_m, mean_speed_mps, max_voltage_drop_v
+// (Ū − U while driving), min_supply_v, max_abs_duty, min_max_duty (D), max_joint_bound_excess_rad
+// (beyond (5.3), ground truth), final_front_joint_rad, final_rear_joint_rad,
+// final_front_joint_max_rad and final_rear_joint_min_rad (the driver's bounds p6_max, p7_min at
+// the end, after the slant response (6.4)), final_joint_error_rad (to the joint targets of the last input), mean_abs_slip_mps,
+// max_slip_mps, gait_state_changes, operator_timeouts, driver_faults, malformed_frames,
+// brownouts, driver_restarts, energy_used_j, final_max_abs_duty (what µ0–µ7 apply at the end),
+// and, only when the operator fell silent or the driver halted: time_to_motors_off_s (from then
+// to the last cycle a duty cycle was applied by µ0–µ7) and time_to_standstill_s (to the last
+// cycle with a duty applied, the body moving faster than 0.01 m/s or turning faster than
+// 0.05 rad/s).
+//
+// For each [[phase]] (phase_metric_names()), named "PHASE.metric": duration_s, distance_m,
+// forward_distance_m, path_length_m, mean_speed_mps (path length / duration), yaw_change_rad,
+// yaw_rate_mean_radps (yaw change / duration, signed: + counter-clockwise), climb_m,
+// energy_used_j, mean_abs_slip_mps, max_voltage_drop_v, final_front_joint_rad,
+// final_rear_joint_rad and final_joint_error_rad (at the phase's end, to the targets in force
+// then), max_joint_error_rad (the largest joint error to the targets in force during the phase,
+// 0 without targets: Procedure 4.17's "within 0.05 rad during 1 s" over a 1-s phase). A phase starts at the first cycle at or after from_s and ends at the first at or after
+// to_s (or with the run).
 #pragma once
 
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/params.hpp"
+#include "runner/scenario.hpp"
 #include "runner/session.hpp"
 
 namespace marsokhod::runner {
 
+const std::vector<std::string>& run_metric_names();
+const std::vector<std::string>& phase_metric_names();
+// A run metric, or "PHASE.metric" with a phase of that name and a phase metric.
+bool is_metric_name(const std::string& name, const std::vector<Phase>& phases);
+
 class Metrics {
  public:
-  explicit Metrics(const Params& params) : params_(&params) {}
+  explicit Metrics(const Params& params, const std::vector<Phase>& phases = {});
 
   // After every cycle. `stop_mark`: the operator went silent or the driver halted at this time
   // (for time_to_standstill_s). `joint_targets`: the position targets of the input in force.
@@ -24,7 +53,34 @@ class Metrics {
   std::map<std::string, double> finish(const Session& session) const;
 
  private:
+  // What the run's accumulators and the truth read at one cycle.
+  struct Snapshot {
+    double time_s = 0.0;
+    std::array<double, 3> position_m{};
+    double yaw_rad = 0.0;  // unwrapped
+    double path_length_m = 0.0;
+    double energy_j = 0.0;
+    double slip_sum = 0.0;
+    std::uint64_t slip_samples = 0;
+    std::array<double, 2> joint_rad{};
+    double joint_error_rad = 0.0;
+  };
+  struct PhaseWindow {
+    Phase phase;
+    std::optional<Snapshot> start, end;
+    double max_voltage_drop_v = 0.0;
+    double max_joint_error_rad = 0.0;
+  };
+
+  Snapshot snapshot(const Session& session, double time_s) const;
+  double joint_error_rad(const sim::GroundTruth& truth) const;
+  void observe_phases(const Session& session, double time_s, std::optional<double> voltage_drop_v,
+                      double joint_error_rad);
+  static void add_phase_metrics(const PhaseWindow& window, const Snapshot& end,
+                                std::map<std::string, double>& metrics);
+
   const Params* params_;
+  std::vector<PhaseWindow> phases_;
   bool started_ = false;
   std::array<double, 3> start_position_m_{};
   std::array<double, 3> last_position_m_{};
@@ -45,6 +101,7 @@ class Metrics {
   double malformed_ = 0.0;
   std::optional<double> stop_mark_s_;
   double last_motion_s_ = 0.0;
+  double last_duty_s_ = 0.0;
   std::optional<double> front_target_rad_, rear_target_rad_;
 };
 

@@ -3,9 +3,13 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
+#include "runner/metrics.hpp"
 #include "runner/operator_log.hpp"
 #include "sim/physics/terrain.hpp"
 
@@ -71,6 +75,26 @@ json to_nlohmann(const toml::node& node) {
   return json::parse(text.str());
 }
 
+// The [[name]] tables of the file, or none; anything else under that key is an error.
+const toml::array* table_array(const Reader& r, const toml::table& root, const std::string& key) {
+  const toml::node* node = root.get(key);
+  if (node == nullptr) return nullptr;
+  const toml::array* array = node->as_array();
+  if (array == nullptr || !array->is_array_of_tables()) {
+    r.fail(key, "expected tables [[" + key + "]]", node);
+  }
+  return array;
+}
+
+void reject_unknown_keys(const Reader& r, const toml::table& t, const std::string& prefix,
+                         std::initializer_list<std::string_view> known) {
+  for (const auto& [key, node] : t) {
+    if (std::find(known.begin(), known.end(), key.str()) == known.end()) {
+      r.fail(prefix + std::string(key.str()), "unknown key", &node);
+    }
+  }
+}
+
 void read_sim(const Reader& r, const toml::table& root, Scenario& s) {
   const toml::table* sim = root["sim"].as_table();
   if (sim == nullptr) return;
@@ -96,12 +120,11 @@ void read_sim(const Reader& r, const toml::table& root, Scenario& s) {
 }
 
 void read_inputs(const Reader& r, const toml::table& root, Scenario& s) {
-  const toml::array* inputs = root["input"].as_array();
+  const toml::array* inputs = table_array(r, root, "input");
   if (inputs == nullptr) return;
   for (std::size_t i = 0; i < inputs->size(); ++i) {
     const toml::table* t = (*inputs)[i].as_table();
     const std::string name = "input[" + std::to_string(i) + "].";
-    if (t == nullptr) r.fail(name, "expected a table [[input]]");
     InputEvent e;
     e.t_s = r.number(*t, "t", -1.0, name);
     if (e.t_s < 0.0) r.fail(name + "t", "a time ≥ 0 s is required", t);
@@ -124,12 +147,11 @@ void read_inputs(const Reader& r, const toml::table& root, Scenario& s) {
 }
 
 void read_faults(const Reader& r, const toml::table& root, Scenario& s) {
-  const toml::array* faults = root["fault"].as_array();
+  const toml::array* faults = table_array(r, root, "fault");
   if (faults == nullptr) return;
   for (std::size_t i = 0; i < faults->size(); ++i) {
     const toml::table* t = (*faults)[i].as_table();
     const std::string name = "fault[" + std::to_string(i) + "].";
-    if (t == nullptr) r.fail(name, "expected a table [[fault]]");
     FaultEvent f;
     for (const auto& [key, node] : *t) {
       const std::string k(key.str());
@@ -159,36 +181,98 @@ void read_faults(const Reader& r, const toml::table& root, Scenario& s) {
   }
 }
 
+void read_phases(const Reader& r, const toml::table& root, Scenario& s) {
+  const toml::array* phases = table_array(r, root, "phase");
+  if (phases == nullptr) return;
+  for (std::size_t i = 0; i < phases->size(); ++i) {
+    const toml::table& t = *(*phases)[i].as_table();
+    const std::string name = "phase[" + std::to_string(i) + "].";
+    reject_unknown_keys(r, t, name, {"name", "from_s", "to_s"});
+    Phase p;
+    p.name = t["name"].value_or(std::string());
+    const bool valid_name = !p.name.empty() && std::all_of(p.name.begin(), p.name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-';
+    });
+    if (!valid_name) r.fail(name + "name", "a name of letters, digits, '_' and '-' is required", &t);
+    for (const Phase& other : s.phases) {
+      if (other.name == p.name) r.fail(name + "name", "\"" + p.name + "\" is used twice", &t);
+    }
+    p.from_s = r.number(t, "from_s", -1.0, name);
+    p.to_s = r.number(t, "to_s", -1.0, name);
+    if (p.from_s < 0.0) r.fail(name + "from_s", "a start time >= 0 s is required", &t);
+    if (!(p.to_s > p.from_s && p.to_s <= s.duration_s)) {
+      r.fail(name + "to_s", "an end time after from_s and at most duration_s is required", &t);
+    }
+    s.phases.push_back(p);
+  }
+}
+
+std::string metric_name(const Reader& r, const toml::node& node, const std::string& key,
+                        const Scenario& s) {
+  const auto value = node.value<std::string>();
+  if (!value || value->empty()) r.fail(key, "expected a metric name", &node);
+  if (!is_metric_name(*value, s.phases)) {
+    r.fail(key, "\"" + *value + "\" is not a metric (see runner/metrics.hpp; phase metrics are "
+                "\"PHASE.metric\" with a [[phase]] of that name)", &node);
+  }
+  return *value;
+}
+
 void read_checks(const Reader& r, const toml::table& root, Scenario& s) {
-  const toml::array* checks = root["check"].as_array();
+  const toml::array* checks = table_array(r, root, "check");
   if (checks == nullptr) return;
   for (std::size_t i = 0; i < checks->size(); ++i) {
-    const toml::table* t = (*checks)[i].as_table();
+    const toml::table& t = *(*checks)[i].as_table();
     const std::string name = "check[" + std::to_string(i) + "].";
-    if (t == nullptr) r.fail(name, "expected a table [[check]]");
+    reject_unknown_keys(r, t, name, {"name", "metric", "ratio_of", "min", "max"});
     Check c;
-    c.name = t->get("name") ? t->get("name")->value_or<std::string>("") : "";
-    c.metric = t->get("metric") ? t->get("metric")->value_or<std::string>("") : "";
-    if (c.metric.empty()) r.fail(name + "metric", "a metric name is required", t);
+    c.name = t["name"].value_or(std::string());
+    if (const toml::node* metric = t.get("metric")) c.metric = metric_name(r, *metric, name + "metric", s);
+    if (const toml::node* ratio = t.get("ratio_of")) {
+      const toml::array* pair = ratio->as_array();
+      if (!c.metric.empty() || pair == nullptr || pair->size() != 2) {
+        r.fail(name + "ratio_of", "expected two metric names (and no metric key)", ratio);
+      }
+      c.ratio_of = std::make_pair(metric_name(r, *pair->get(0), name + "ratio_of", s),
+                                  metric_name(r, *pair->get(1), name + "ratio_of", s));
+      c.metric = c.ratio_of->first + " / " + c.ratio_of->second;
+    }
+    if (c.metric.empty()) r.fail(name + "metric", "a metric name (or ratio_of) is required", &t);
     if (c.name.empty()) c.name = c.metric;
-    if (t->get("min")) c.min = r.number(*t, "min", 0.0, name);
-    if (t->get("max")) c.max = r.number(*t, "max", 0.0, name);
-    if (!c.min && !c.max) r.fail(name, "give min, max or both", t);
+    if (t.get("min")) c.min = r.number(t, "min", 0.0, name);
+    if (t.get("max")) c.max = r.number(t, "max", 0.0, name);
+    if (!c.min && !c.max) r.fail(name + "min", "give min, max or both", &t);
+    if (c.min && c.max && *c.min > *c.max) r.fail(name + "max", "max is below min", &t);
     s.checks.push_back(c);
   }
 }
 
+// Settings are checked now, against the defaults, so that a typo names its line.
+void check_runtime(const Reader& r, const json& settings, const std::string& key,
+                   const toml::node& node) {
+  try {
+    (void)runtime_settings_from_json(settings, driver::RuntimeSettings{});
+  } catch (const std::invalid_argument& e) {
+    r.fail(key, e.what(), &node);
+  }
+}
+
 void read_runtime(const Reader& r, const toml::table& root, Scenario& s) {
-  if (const toml::table* rt = root["runtime"].as_table()) s.runtime = to_nlohmann(*rt);
-  const toml::array* changes = root["runtime_change"].as_array();
+  if (const toml::node* rt = root.get("runtime")) {
+    if (!rt->is_table()) r.fail("runtime", "expected a table [runtime]", rt);
+    s.runtime = to_nlohmann(*rt);
+    check_runtime(r, s.runtime, "runtime", *rt);
+  }
+  const toml::array* changes = table_array(r, root, "runtime_change");
   if (changes == nullptr) return;
   for (std::size_t i = 0; i < changes->size(); ++i) {
-    const toml::table* t = (*changes)[i].as_table();
-    if (t == nullptr) r.fail("runtime_change[" + std::to_string(i) + "]", "expected a table");
+    const toml::table& t = *(*changes)[i].as_table();
+    const std::string name = "runtime_change[" + std::to_string(i) + "]";
     RuntimeEvent e;
-    e.t_s = r.number(*t, "t", 0.0, "runtime_change.");
-    e.settings = to_nlohmann(*t);
+    e.t_s = r.number(t, "t", 0.0, name + ".");
+    e.settings = to_nlohmann(t);
     e.settings.erase("t");
+    check_runtime(r, e.settings, name, t);
     s.runtime_changes.push_back(e);
   }
 }
@@ -206,7 +290,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
   }
   static const std::vector<std::string> kKeys = {"name", "description", "duration_s", "seed",
                                                  "sim", "terrain", "runtime", "input", "fault",
-                                                 "runtime_change", "check"};
+                                                 "runtime_change", "phase", "check"};
   for (const auto& [key, node] : root) {
     if (std::find(kKeys.begin(), kKeys.end(), key.str()) == kKeys.end()) {
       r.fail(std::string(key.str()), "unknown key", &node);
@@ -230,6 +314,7 @@ Scenario load_scenario(const std::filesystem::path& file) {
   read_runtime(r, root, s);
   read_inputs(r, root, s);
   read_faults(r, root, s);
+  read_phases(r, root, s);
   read_checks(r, root, s);
   auto by_time = [](const auto& a, const auto& b) { return a.t_s < b.t_s; };
   std::stable_sort(s.inputs.begin(), s.inputs.end(), by_time);

@@ -1,4 +1,4 @@
-// A scenario file (TOML): terrain, faults, a timeline of operator inputs, and checks.
+// A scenario file (TOML): terrain, faults, a timeline of operator inputs, phases and checks.
 //
 //   name = "straight-and-spin"            # defaults to the file name
 //   description = "Figures 3.5/3.8: …"
@@ -14,12 +14,22 @@
 //              silent = [3], frame_loss = 0.1, lost_pulses = {motor = 2, fraction = 0.3},
 //              battery_sag_ohm = 0.5, brownout = true, driver_halt = true, clear = true
 //   [[runtime_change]] t = 10.0, then the [runtime] keys
+//   [[phase]]  name = "short", from_s = 4.0, to_s = 9.0
+//              A time window [from_s, to_s) with metrics of its own, named "PHASE.metric"
+//              (metrics.hpp lists them): "short.yaw_rate_mean_radps". Names are letters, digits,
+//              '_' and '-'; phases may overlap; to_s ≤ duration_s.
 //   [[check]]  name = "…", metric = "distance_m", min = 1.0, max = 3.0   (either bound optional)
+//              or, instead of metric, ratio_of = ["short.yaw_rate_mean_radps",
+//              "long.yaw_rate_mean_radps"]: the check's value is the first metric divided by
+//              the second (to compare phases). Every metric named must exist (metrics.hpp).
+// Every key is checked: an unknown key, a wrong type or a value out of range is an error naming
+// the key and its line.
 #pragma once
 
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -50,9 +60,16 @@ struct RuntimeEvent {
   nlohmann::json settings;  // the [runtime] keys, applied with runtime_settings_from_json
 };
 
+struct Phase {
+  std::string name;
+  double from_s = 0.0;
+  double to_s = 0.0;
+};
+
 struct Check {
   std::string name;
-  std::string metric;
+  std::string metric;  // or, with ratio_of, "A / B"
+  std::optional<std::pair<std::string, std::string>> ratio_of;  // the value is A / B
   std::optional<double> min, max;
 };
 
@@ -68,6 +85,7 @@ struct Scenario {
   std::vector<InputEvent> inputs;
   std::vector<FaultEvent> faults;
   std::vector<RuntimeEvent> runtime_changes;
+  std::vector<Phase> phases;
   std::vector<Check> checks;
 };
 

@@ -43,12 +43,17 @@ CheckResult evaluate(const Check& c, const std::map<std::string, double>& metric
   if (c.min && c.max) r.limit = "[" + number(*c.min) + ", " + number(*c.max) + "]";
   else if (c.min) r.limit = ">= " + number(*c.min);
   else r.limit = "<= " + number(*c.max);
-  const auto it = metrics.find(c.metric);
-  if (it == metrics.end()) {
-    r.limit += " (no such metric)";
+  const auto value_of = [&metrics](const std::string& name) -> std::optional<double> {
+    const auto it = metrics.find(name);
+    return it == metrics.end() ? std::nullopt : std::optional(it->second);
+  };
+  const auto first = value_of(c.ratio_of ? c.ratio_of->first : c.metric);
+  const auto second = c.ratio_of ? value_of(c.ratio_of->second) : std::optional(1.0);
+  if (!first || !second) {
+    r.limit += " (no such metric in this run)";
     return r;
   }
-  r.value = it->second;
+  r.value = c.ratio_of ? *first / *second : *first;
   r.passed = std::isfinite(r.value) && (!c.min || r.value >= *c.min) && (!c.max || r.value <= *c.max);
   return r;
 }
@@ -60,6 +65,15 @@ const InputEvent* current_input(const Scenario& s, double now) {
     if (e.t_s <= now + 1e-9) current = &e;
   }
   return current;
+}
+
+// A new [[input]] takes over: a silence starts the stop timing, position targets are what the
+// joints are measured against.
+void note_new_input(const InputEvent& event, double now, Metrics& metrics) {
+  if (!event.input) metrics.mark_stop(now);
+  const auto& t = event.input && event.input->targets ? event.input->targets : std::nullopt;
+  metrics.set_joint_targets(t ? t->front_joint_target_rad : std::nullopt,
+                            t ? t->rear_joint_target_rad : std::nullopt);
 }
 
 }  // namespace
@@ -76,7 +90,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   session.set_runtime(runtime_settings_from_json(scenario.runtime, session.runtime()));
   std::unique_ptr<Recorder> recorder;
   if (options.out) recorder = std::make_unique<Recorder>(*options.out, options.config_file);
-  Metrics metrics(params);
+  Metrics metrics(params, scenario.phases);
   std::size_t next_fault = 0, next_runtime = 0;
   const InputEvent* previous = nullptr;
   bool runtime_changed = true;
@@ -95,12 +109,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
       runtime_changed = true;
     }
     const InputEvent* event = current_input(scenario, now);
-    if (event != previous && event != nullptr) {
-      if (!event->input) metrics.mark_stop(now);
-      const auto& t = event->input && event->input->targets ? event->input->targets : std::nullopt;
-      metrics.set_joint_targets(t ? t->front_joint_target_rad : std::nullopt,
-                                t ? t->rear_joint_target_rad : std::nullopt);
-    }
+    if (event != previous && event != nullptr) note_new_input(*event, now, metrics);
     previous = event;
     const driver::OperatorInput* input = event && event->input ? &*event->input : nullptr;
     const CycleRecord& cycle = session.step(input);
@@ -117,10 +126,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   result.real_time_factor = result.wall_time_s > 0.0 ? result.sim_time_s / result.wall_time_s : 0.0;
   result.metrics = metrics.finish(session);
   result.passed = true;
-  for (const Check& c : scenario.checks) {
-    result.checks.push_back(evaluate(c, result.metrics));
-    result.passed = result.passed && result.checks.back().passed;
-  }
+  for (const Check& c : scenario.checks) result.checks.push_back(evaluate(c, result.metrics));
+  for (const CheckResult& c : result.checks) result.passed = result.passed && c.passed;
   recorder.reset();  // flush before plotting
   if (options.out && options.plots) {
     if (auto note = make_plots(*options.out)) result.notes.push_back(*note);

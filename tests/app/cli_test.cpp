@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -60,6 +65,36 @@ TEST(Cli, MissingConfigFileIsAUsageError) {
   const Result r = cli({"--config", "/nonexistent/marsokhod.toml", "decode", "-"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/nonexistent/marsokhod.toml"), std::string::npos) << r.err;
+}
+
+TEST(Cli, AnUnknownScenarioIsAOneLineUsageError) {
+  const Result r = cli({"--config", kConfig.c_str(), "scenario", "no-such-scenario"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("'no-such-scenario'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("marsokhod scenario --list"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.back(), '\n');
+}
+
+TEST(Cli, ABrokenScenarioFileIsAUsageErrorNamingTheKey) {
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("marsokhod-cli-broken-" + std::to_string(::getpid()) + ".toml");
+  std::ofstream(file) << "duration_s = 5.0\n[[check]]\nmetric = \"distance_m\"\nmaxx = 1.0\n";
+  const Result r = cli({"--config", kConfig.c_str(), "scenario", file.c_str()});
+  std::filesystem::remove(file);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("check[0].maxx: unknown key (line 4)"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST(Cli, TheShippedScenariosAreListed) {
+  const Result r = cli({"--config", kConfig.c_str(), "scenario", "--list"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("straight-and-spin  Figures 3.5/3.8"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("dead-man  "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("(invalid"), std::string::npos) << r.out;
 }
 
 TEST(Cli, HelpListsTheCommands) {

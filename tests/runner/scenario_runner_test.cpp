@@ -1,0 +1,153 @@
+// runner::run_scenario: metrics of the run and of its phases, checks (ratio_of too), and the
+// determinism the recordings rely on.
+#include "runner/scenario_runner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "runner/metrics.hpp"
+#include "runner_test_support.hpp"
+
+namespace marsokhod::runner {
+namespace {
+
+using testing::ScratchFolder;
+using testing::shipped_params;
+
+// Start-up (about 2 s), then 2 s of driving forward at v1 = 1.5 rad/s.
+constexpr const char* kShortDrive = R"(
+duration_s = 4.0
+seed = 3
+[sim]
+supply = "battery"
+[[input]]
+t = 0.0
+targets = { v1 = 0.0 }
+[[input]]
+t = 2.5
+targets = { v1 = 1.5 }
+[[phase]]
+name = "standing"
+from_s = 0.5
+to_s = 2.0
+[[phase]]
+name = "driving"
+from_s = 3.0
+to_s = 4.0
+[[check]]
+name = "mean speed from its parts"
+ratio_of = ["driving.path_length_m", "driving.duration_s"]
+min = 0.05
+[[check]]
+metric = "standing.distance_m"
+max = 0.01
+[[check]]
+name = "needs a stop that never happens"
+metric = "time_to_standstill_s"
+max = 1.0
+)";
+
+ScenarioResult run(const std::string& text, std::optional<std::uint64_t> seed = std::nullopt) {
+  const ScratchFolder folder;
+  const Scenario scenario = load_scenario(folder.write("short.toml", text));
+  RunOptions options;
+  options.seed = seed;
+  options.plots = false;
+  return run_scenario(scenario, shipped_params(), options);
+}
+
+TEST(ScenarioRunner, ReportsTheRunsAndEachPhasesMetrics) {
+  const ScenarioResult r = run(kShortDrive);
+  EXPECT_EQ(r.seed, 3u);
+  EXPECT_NEAR(r.sim_time_s, 4.0, 0.016);
+  for (const std::string& name : run_metric_names()) {
+    if (name == "time_to_standstill_s" || name == "time_to_motors_off_s") continue;  // no stop
+    EXPECT_TRUE(r.metrics.contains(name)) << name;
+  }
+  for (const char* phase : {"standing", "driving"}) {
+    for (const std::string& name : phase_metric_names()) {
+      EXPECT_TRUE(r.metrics.contains(std::string(phase) + "." + name)) << phase << "." << name;
+    }
+  }
+  const std::vector<Phase> phases{{"standing", 0.5, 2.0}, {"driving", 3.0, 4.0}};
+  for (const auto& [name, value] : r.metrics) {
+    EXPECT_TRUE(is_metric_name(name, phases)) << name << " is not documented in metrics.hpp";
+    EXPECT_TRUE(std::isfinite(value)) << name;
+  }
+  // A phase spans whole cycles from its start to its end (h = 15.6 ms).
+  EXPECT_NEAR(r.metrics.at("driving.duration_s"), 1.0, 0.016);
+  EXPECT_LT(r.metrics.at("standing.distance_m"), 0.01);
+  EXPECT_GT(r.metrics.at("driving.forward_distance_m"), 0.05);
+  EXPECT_LE(r.metrics.at("driving.forward_distance_m"), r.metrics.at("forward_distance_m"));
+  EXPECT_GT(r.metrics.at("driving.energy_used_j"), 0.0);
+  EXPECT_LT(r.metrics.at("driving.energy_used_j"), r.metrics.at("energy_used_j"));
+  EXPECT_DOUBLE_EQ(r.metrics.at("driving.mean_speed_mps"),
+                   r.metrics.at("driving.path_length_m") / r.metrics.at("driving.duration_s"));
+  EXPECT_DOUBLE_EQ(r.metrics.at("driving.yaw_rate_mean_radps"),
+                   r.metrics.at("driving.yaw_change_rad") / r.metrics.at("driving.duration_s"));
+}
+
+TEST(ScenarioRunner, EvaluatesRatiosAndReportsAMissingMetric) {
+  const ScenarioResult r = run(kShortDrive);
+  ASSERT_EQ(r.checks.size(), 3u);
+  EXPECT_EQ(r.checks[0].value, r.metrics.at("driving.path_length_m") / r.metrics.at("driving.duration_s"));
+  EXPECT_TRUE(r.checks[0].passed);
+  EXPECT_EQ(r.checks[0].limit, ">= 0.05");
+  EXPECT_TRUE(r.checks[1].passed);
+  // No operator silence and no halt in this run: the metric does not exist, the check fails.
+  EXPECT_FALSE(r.checks[2].passed);
+  EXPECT_NE(r.checks[2].limit.find("no such metric"), std::string::npos) << r.checks[2].limit;
+  EXPECT_FALSE(r.passed);
+  const auto json = to_json(r);
+  EXPECT_TRUE(json["checks"][2]["value"].is_null());
+}
+
+TEST(ScenarioRunner, OneSeedGivesTheSameMetricsBitForBit) {
+  const ScenarioResult a = run(kShortDrive);
+  const ScenarioResult b = run(kShortDrive);
+  ASSERT_EQ(a.metrics.size(), b.metrics.size());
+  for (const auto& [name, value] : a.metrics) {
+    ASSERT_TRUE(b.metrics.contains(name)) << name;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(value), std::bit_cast<std::uint64_t>(b.metrics.at(name)))
+        << name << ": " << value << " vs " << b.metrics.at(name);
+  }
+}
+
+TEST(ScenarioRunner, AnotherSeedGivesAnotherRover) {
+  const ScenarioResult a = run(kShortDrive);
+  const ScenarioResult b = run(kShortDrive, 4);
+  EXPECT_EQ(b.seed, 4u);
+  // The seed draws the rover's per-unit truth (ζ, droop, sensor tables, noise): the energy it
+  // uses and the way it covers differ.
+  EXPECT_NE(a.metrics.at("energy_used_j"), b.metrics.at("energy_used_j"));
+  EXPECT_NE(a.metrics.at("path_length_m"), b.metrics.at("path_length_m"));
+}
+
+TEST(ScenarioRunner, StopsAreTimedFromTheOperatorsSilence) {
+  const ScenarioResult r = run(R"(
+duration_s = 5.0
+[[input]]
+t = 0.0
+targets = { v1 = 0.0 }
+[[input]]
+t = 2.5
+targets = { v1 = 1.0 }
+[[input]]
+t = 3.5
+silent = true
+)");
+  // 0.5 s of operator timeout, then the ramp: the motors are off within the run.
+  EXPECT_GT(r.metrics.at("time_to_motors_off_s"), 0.5);
+  EXPECT_LT(r.metrics.at("time_to_motors_off_s"), 1.4);
+  EXPECT_GE(r.metrics.at("time_to_standstill_s"), r.metrics.at("time_to_motors_off_s"));
+  EXPECT_EQ(r.metrics.at("final_max_abs_duty"), 0.0);
+  EXPECT_EQ(r.metrics.at("operator_timeouts"), 1.0);
+}
+
+}  // namespace
+}  // namespace marsokhod::runner
