@@ -1,24 +1,12 @@
 // Helpers shared by the behaviour tests.
 #pragma once
 
-#include <limits>
-#include <stdexcept>
-#include <string>
+#include "../../support/invalid_argument.hpp"
 
 namespace marsokhod::behaviour::test {
 
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-inline constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// The message of the std::invalid_argument that call throws, or a marker the assertion shows.
-template <class Call>
-std::string invalid_argument_message(Call&& call) {
-  try {
-    call();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "<no std::invalid_argument thrown>";
-}
+using test_support::invalid_argument_message;
+using test_support::kInf;
+using test_support::kNaN;
 
 }  // namespace marsokhod::behaviour::test
