@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "config/load_params.hpp"
+#include "core/tracking/clock.hpp"
 
 namespace marsokhod::config {
 namespace {
@@ -67,7 +68,7 @@ std::vector<std::string> consistency_problems(const Params& p) {
                   " must be below center_axle_to_joint_m (" + fmt(g.center_axle_to_joint_m) +
                   ") for the joints to stand vertical at acos(a/b)");
   }
-  const double overflow_s = clock_overflow_period_s(p.cycle.con);
+  const double overflow_s = tracking::clock_overflow_period_s(p.cycle.con);
   if (!(p.cycle.period_s < overflow_s)) {
     out.push_back("cycle.period_s: " + fmt(p.cycle.period_s) + " s is not below T(con = " +
                   std::to_string(p.cycle.con) + ") = " + fmt(overflow_s) +

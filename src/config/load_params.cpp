@@ -216,8 +216,6 @@ ConsoleParams read_console(ConfigReader r) {
 ConfigError::ConfigError(const std::string& source, std::vector<std::string> problems)
     : std::runtime_error(join(source, problems)), problems_(std::move(problems)) {}
 
-double clock_overflow_period_s(int con) { return (con + 1) * 65536.0 / 2'000'000.0; }
-
 Params parse_params(std::string_view toml_text, const std::string& source) {
   toml::table root;
   try {

@@ -32,7 +32,4 @@ Params load_params(const std::filesystem::path& file);
 // monotone W tables, a δ table for the configured (h, con)). Empty when all is well.
 std::vector<std::string> consistency_problems(const Params& params);
 
-// The period T(con) = (con + 1)·65536/2 MHz after which the controllers' 16-bit clock overflows.
-double clock_overflow_period_s(int con);
-
 }  // namespace marsokhod::config

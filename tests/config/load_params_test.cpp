@@ -1,4 +1,5 @@
 #include "config/load_params.hpp"
+#include "core/tracking/clock.hpp"
 
 #include <gtest/gtest.h>
 
@@ -213,8 +214,8 @@ TEST(LoadParams, EveryProblemIsListedAtOnce) {
 
 TEST(LoadParams, CyclePeriodMustStayBelowClockOverflow) {
   // T(0) = 65536/2e6 = 0.032768 s; h = 0.04 s would lose tim overflows (3.2).
-  EXPECT_DOUBLE_EQ(clock_overflow_period_s(0), 0.032768);
-  EXPECT_DOUBLE_EQ(clock_overflow_period_s(1), 0.065536);
+  EXPECT_DOUBLE_EQ(tracking::clock_overflow_period_s(0), 0.032768);
+  EXPECT_DOUBLE_EQ(tracking::clock_overflow_period_s(1), 0.065536);
   try {
     parse_params(with_value("[cycle]", "period_s", "0.04"), "test.toml");
     FAIL() << "no ConfigError";

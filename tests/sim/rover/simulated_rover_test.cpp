@@ -228,7 +228,6 @@ TEST(SimulatedRover, TwoRunsWithOneSeedAreIdentical) {
     SimOptions options;
     options.seed = 7;
     Bench bench(options);
-    std::vector<protocol::CanFrame> frames;
     bench.run(100, wheels(0.3));
     return std::make_pair(bench.rover.truth().position_m, bench.last_measurement);
   };
