@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/adaptation/backlash.hpp"
 #include "core/adaptation/no_load_velocity.hpp"
 #include "core/behaviour/contract_on_turn.hpp"
 #include "core/behaviour/load_distribution.hpp"
@@ -235,9 +236,21 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   joint_velocity_ = {joints.front_radps, joints.rear_radps};
   status.commands.v6_radps = joints.front_radps;
   status.commands.v7_radps = joints.rear_radps;
+  // n6·w6, n7·w7 with w from (4.2) on the velocity assigned to the joint motor (chapter 4.4's
+  // ŵ6(t), ŵ7(t)) rather than on the measured one: the wheels turn with the joint from the first
+  // cycle it is driven, so a joint that must pull the rover along is not held by still wheels
+  // (with the measured w the wheels only follow a joint that already moves); P± of (4.2) keeps
+  // them still while the shaft crosses its gap, as chapter 4.1 demands (docs/decisions.md).
+  const auto assigned_joint_velocity = [&](std::size_t motor, double command_radps) {
+    return adaptation::backlash_velocity(status.motors[motor].shaft_position_rad, command_radps,
+                                         status.motors[motor].position_rad,
+                                         params_->motors.backlash_rad[motor]);
+  };
   const MotorVector walking = mobility::walking_motion(
-      {p6, p7, joints.front_radps, joints.rear_radps, status.motors[kFrontJoint].velocity_radps,
-       status.motors[kRearJoint].velocity_radps, front_place.placement, rear_place.placement},
+      {p6, p7, joints.front_radps, joints.rear_radps,
+       assigned_joint_velocity(kFrontJoint, joints.front_radps),
+       assigned_joint_velocity(kRearJoint, joints.rear_radps), front_place.placement,
+       rear_place.placement},
       params_->geometry);
   // (5.4)–(5.6) under D, then the load distribution h (6.5)/(6.6) within the same bounds.
   const MotorVector limit = mobility::motor_velocity_bounds(

@@ -96,12 +96,17 @@ void GaitSequencer::latch_held_positions(const GaitInput& input) {
 
 bool GaitSequencer::reached(std::size_t index, const GaitInput& input) const {
   const GaitState state = gait_state(gait_, index, intent_);
-  const auto at = [&](const control::MotionState& joint, double target_rad) {
+  // "Stopped" is the joint's measured velocity when there is one: the commanded ŵ of (4.13) can
+  // stay a few hundredths of a rad/s off zero while the motor stands in its dead zone.
+  const auto at = [&](const control::MotionState& joint, std::optional<double> measured_radps,
+                      double target_rad) {
     return std::abs(joint.position - target_rad) <= joints_.target_tolerance_rad &&
-           std::abs(joint.velocity) <= kStoppedSpeedRadps;
+           std::abs(measured_radps.value_or(joint.velocity)) <= kStoppedSpeedRadps;
   };
-  return at(input.front_joint, stroke_target_rad(state.front, front_strokes_, held_front_rad_)) &&
-         at(input.rear_joint, stroke_target_rad(state.rear, rear_strokes_, held_rear_rad_));
+  return at(input.front_joint, input.front_measured_radps,
+            stroke_target_rad(state.front, front_strokes_, held_front_rad_)) &&
+         at(input.rear_joint, input.rear_measured_radps,
+            stroke_target_rad(state.rear, rear_strokes_, held_rear_rad_));
 }
 
 void GaitSequencer::advance(bool forward, DrivingIntent intent, const GaitInput& input) {

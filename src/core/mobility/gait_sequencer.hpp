@@ -5,7 +5,9 @@
 // - The gait runs through the segment (from, to) of its cycle: s > 0 approaches `to`, s < 0
 //   approaches `from` (the cycle backward: the same transition undone). A state is reached when
 //   both joints are within JointParams::target_tolerance_rad (0.05) of its targets and
-//   |w| ≤ kStoppedSpeedRadps (0.02 rad/s, about 6 encoder counts per 64 Hz cycle); then the
+//   |w| ≤ kStoppedSpeedRadps (0.02 rad/s, about 6 encoder counts per 64 Hz cycle), w the measured
+//   joint velocity when given (else the velocity state: the commanded ŵ can stay ≈ 0.04 rad/s
+//   while the motor stands in its dead zone, which would never count as stopped); then the
 //   segment moves one state on in the direction of s. At most one state per cycle.
 // - The joint controls: (4.15) toward (v_d, p_d) = (0, target) with μ = control_rate_per_s and
 //   C = |s|·max_joint_speed_fraction·w, then clipped by (4.16)'s bound terms for (5.3) at the
@@ -46,7 +48,7 @@ struct GaitInput {
   control::MotionState rear_joint;
   double period_s = 0.0;                           // h
   // The measured w6, w7 for the ε-formula of chapter 5.3 (SPEC.md: from the measured joint
-  // velocities); without them the velocity states above are used.
+  // velocities) and for "stopped"; without them the velocity states above are used.
   std::optional<double> front_measured_radps{};
   std::optional<double> rear_measured_radps{};
 };

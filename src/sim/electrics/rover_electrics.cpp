@@ -1,5 +1,7 @@
 #include "sim/electrics/rover_electrics.hpp"
 
+#include <stdexcept>
+
 namespace marsokhod::sim {
 namespace {
 
@@ -82,6 +84,14 @@ const ElectricsOutput& RoverElectrics::step(const ElectricsInput& input, double 
 
 void RoverElectrics::set_extra_series_resistance_ohm(double resistance_ohm) {
   std::visit([&](auto& supply) { supply.set_extra_resistance_ohm(resistance_ohm); }, supply_);
+}
+
+void RoverElectrics::set_tether_voltage(double set_v) {
+  TetherSupply* tether = std::get_if<TetherSupply>(&supply_);
+  if (tether == nullptr) {
+    throw std::invalid_argument("the rover runs on its battery: only a tether's voltage can be set");
+  }
+  tether->set_voltage(set_v);
 }
 
 void RoverElectrics::set_state_of_charge(double state_of_charge) {

@@ -63,6 +63,9 @@ class RoverElectrics {
   void set_extra_series_resistance_ohm(double resistance_ohm);
   void set_state_of_charge(double state_of_charge);
   void force_brownout();
+  // The laboratory supply's set voltage; throws std::invalid_argument on the battery or outside
+  // 0..30 V.
+  void set_tether_voltage(double set_v);
 
  private:
   double base_load_a() const;

@@ -8,7 +8,7 @@ namespace marsokhod::sim {
 namespace {
 
 // One stream per group of draws: adding a draw to one group leaves the others unchanged.
-enum Stream : std::uint64_t { kMotorStream = 1, kSensorStream = 2 };
+enum Stream : std::uint64_t { kMotorStream = 1, kSensorStream = 2, kBacklashStream = 3 };
 
 void scatter_motor(MotorTruth& motor, SeededRandom& random) {
   motor.scale *= 1.0 + random.uniform(-0.02, 0.02);
@@ -36,7 +36,17 @@ void scatter_sensors(SensorTruth& sensors, SeededRandom& random) {
   }
   shift_conversion(sensors.tilt_front, random, 3.0);
   shift_conversion(sensors.tilt_rear, random, 3.0);
-  shift_conversion(sensors.supply, random, 1.0);
+  // The supply's divider (300 kΩ / 68.1 kΩ, 1 % parts) and µ8's ADC reference: the gain within
+  // ±1.5 %, the offset a few counts (Procedure 3.5 finds them).
+  shift_conversion(sensors.supply, random, 3.0);
+  sensors.supply.gain *= 1.0 + random.uniform(-0.015, 0.015);
+}
+
+// A joint's play differs from the nominal by 6–15 % either way: clearly, so that a calibration
+// returning the nominal value is told apart from one that measured it.
+void scatter_backlash(MotorTruth& motor, SeededRandom& random) {
+  const double sign = random.uniform(-1.0, 1.0) < 0.0 ? -1.0 : 1.0;
+  motor.backlash_rad *= 1.0 + sign * random.uniform(0.06, 0.15);
 }
 
 }  // namespace
@@ -45,6 +55,7 @@ SimTruth exact_sim_truth(const Params& params) {
   SimTruth truth;
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     truth.motors[i].scale = params.motors.scale[i];
+    truth.motors[i].backlash_rad = params.motors.backlash_rad[i];
   }
   truth.power.brownout_v = params.power.brownout_v;
   SensorTruth& sensors = truth.sensors;
@@ -64,6 +75,10 @@ SimTruth make_sim_truth(const Params& params, std::uint64_t seed) {
   SeededRandom motor_random(derive_seed(seed, kMotorStream));
   for (MotorTruth& motor : truth.motors) {
     scatter_motor(motor, motor_random);
+  }
+  SeededRandom backlash_random(derive_seed(seed, kBacklashStream));
+  for (std::size_t joint : {kFrontJoint, kRearJoint}) {
+    scatter_backlash(truth.motors[joint], backlash_random);
   }
   SeededRandom sensor_random(derive_seed(seed, kSensorStream));
   scatter_sensors(truth.sensors, sensor_random);

@@ -53,6 +53,9 @@ struct MotorTruth {
   double no_load_current_a = 0.12;        // I0 at icr = 511
   double no_load_current_a_per_radps = 0.06;
   double current_gain_per_icr_octave = 0.15;  // Remark 3.2: higher icr, more current
+  // Joints (6, 7): the true play between shaft and joint, Procedure 4.1 (the physics' gap);
+  // wheels 0.
+  double backlash_rad = 0.0;
 };
 
 enum class SupplyKind : std::uint8_t { kBattery, kTether };
@@ -139,8 +142,10 @@ struct SimTruth {
 SimTruth exact_sim_truth(const Params& params);
 
 // A unit drawn from seed: ζ_i within ±2 % of the nominal, lag 10–14 ms, droop ±5 %, dead zone
-// ±10 %, ±g readings ±2 counts, gyro base line 505 ± 5 and its drift's amplitude/period/phase,
-// tilt and supply offsets within a few counts. Deterministic: equal seeds give equal truths.
+// ±10 %, the joints' backlash 6–15 % above or below the nominal, ±g readings ±2 counts, gyro
+// base line 505 ± 5 and its drift's amplitude/period/phase, tilt offsets within 3 counts, the
+// supply's offset within 3 counts and its gain ±1.5 %. Deterministic: equal seeds give equal
+// truths.
 SimTruth make_sim_truth(const Params& params, std::uint64_t seed);
 
 }  // namespace marsokhod::sim

@@ -27,6 +27,13 @@ double TetherSupply::step(double current_a, double /*dt_s*/) const {
   return terminal_voltage_v(current_a);
 }
 
+void TetherSupply::set_voltage(double set_v) {
+  if (!(set_v >= 0.0 && set_v <= 30.0)) {
+    throw std::invalid_argument("tether supply: the set voltage must lie in 0..30 V");
+  }
+  truth_.set_v = set_v;
+}
+
 void TetherSupply::set_extra_resistance_ohm(double resistance_ohm) {
   if (!std::isfinite(resistance_ohm) || resistance_ohm < 0.0) {
     throw std::invalid_argument("tether supply: the extra resistance must be finite and ≥ 0 Ω");

@@ -21,6 +21,10 @@ class TetherSupply {
   double terminal_voltage_v(double current_a) const;
 
   bool current_limited(double current_a) const { return current_a > truth_.current_limit_a; }
+  // The knob on the laboratory supply (Procedure 3.5 turns it from 27 down to 20 V); throws
+  // std::invalid_argument outside 0..30 V.
+  void set_voltage(double set_v);
+  double set_voltage_v() const { return truth_.set_v; }
   // The sag fault: an extra resistance in the tether (a long or damaged cable).
   void set_extra_resistance_ohm(double resistance_ohm);
 

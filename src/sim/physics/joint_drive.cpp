@@ -26,7 +26,6 @@ JointDrive::JointDrive(double initial_joint_rad, double backlash_rad)
 
 bool JointDrive::update(double shaft_rad, double joint_rad, double no_load_speed_radps) {
   const JointMode before = mode_;
-  const double gap_rad = shaft_rad - joint_rad;
   switch (mode_) {
     case JointMode::kPushingUp:
       if (no_load_speed_radps > kPushingSpeedRadps) {
@@ -47,6 +46,10 @@ bool JointDrive::update(double shaft_rad, double joint_rad, double no_load_speed
   // shaft is already bearing on the end it is commanded toward.
   if (mode_ != JointMode::kLocked) held_angle_rad_ = joint_rad;
   mode_ = JointMode::kLocked;
+  // The gap is measured from the lock's angle, where the shaft's stops are: the (soft) lock lets
+  // the joint itself creep a fraction of a milliradian under load, and a gap measured from the
+  // joint could then never close.
+  const double gap_rad = shaft_rad - held_angle_rad_;
   if (no_load_speed_radps > kPushingSpeedRadps && gap_rad >= backlash_rad_ - kGapEndToleranceRad) {
     mode_ = JointMode::kPushingUp;
   } else if (no_load_speed_radps < -kPushingSpeedRadps && gap_rad <= kGapEndToleranceRad) {

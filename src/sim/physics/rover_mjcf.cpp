@@ -239,6 +239,13 @@ void write_constraints_and_sensors(XmlWriter& xml) {
                        {"active", "false"},
                        {"solref", solref}});
   }
+  // The stand holds the center unit's frame at the stand's (switched by RoverPhysics).
+  xml.leaf("weld", {{"name", kTestStandName},
+                    {"body1", kCenterUnitName},
+                    {"body2", kTestStandName},
+                    {"relpose", "0 0 0 1 0 0 0"},
+                    {"active", "false"},
+                    {"solref", solref}});
   // A blocked wheel (Field Experiment 6.2): its hinge held at the angle it had, when activated.
   for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
     xml.leaf("joint", {{"name", wheel_block_name(wheel)},
@@ -291,6 +298,9 @@ std::string rover_mjcf(const Params& params, const TerrainSpec& terrain, double 
   xml.open("worldbody");
   write_terrain_geoms(xml, terrain);
   write_center_unit(xml, params);
+  // The calibration stand (Procedures 3.3, 4.4–4.13): a mocap frame the center unit is welded to
+  // while the rover is on the stand; no geometry, so it touches nothing.
+  xml.leaf("body", {{"name", kTestStandName}, {"mocap", "true"}, {"pos", "0 0 -10"}});
   xml.close();
   write_actuators(xml);
   write_constraints_and_sensors(xml);

@@ -68,6 +68,7 @@ std::string joint_lock_name(std::size_t motor);
 std::string joint_coupling_name(std::size_t motor);
 std::string wheel_block_name(std::size_t wheel);
 inline constexpr const char* kCenterUnitName = "center_unit";
+inline constexpr const char* kTestStandName = "test_stand";
 inline constexpr const char* kFrontTiltName = "tilt_front";
 inline constexpr const char* kRearTiltName = "tilt_rear";
 inline constexpr const char* kImuSiteName = "imu";

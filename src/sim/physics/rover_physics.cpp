@@ -18,6 +18,11 @@ constexpr double kRayStartHeightM = 1000.0;
 
 constexpr std::array<std::size_t, 2> kJointMotors{kFrontJoint, kRearJoint};
 
+// The joint lock's brake on a shaft running ahead of its motor (apply_joint_lock_brake): stiff
+// enough that a 40 N·m aiding load overruns ω0 by 4 mrad/s; the lock bears up to 1000 N·m.
+constexpr double kLockBrakeGainNmsPerRad = 1e4;
+constexpr double kLockBrakeTorqueNm = 1000.0;
+
 JointDrive joint_drive_for(const Params& params, std::size_t motor) {
   return JointDrive(params.motors.initial_position_rad[motor], params.motors.backlash_rad[motor]);
 }
@@ -70,6 +75,7 @@ RoverPhysics::Impl::Impl(const Params& params_in, const TerrainSpec& terrain, do
   resolve_ids();
   start_joints();
   place_on_terrain(terrain);
+  resolve_terrain_materials(terrain);
   mj_forward(model.get(), data.get());
 }
 
@@ -102,6 +108,8 @@ void RoverPhysics::Impl::resolve_ids() {
   ids.tilt_qpos[0] = m.jnt_qposadr[require_id(m, mjOBJ_JOINT, kFrontTiltName)];
   ids.tilt_qpos[1] = m.jnt_qposadr[require_id(m, mjOBJ_JOINT, kRearTiltName)];
   ids.accelerometer = m.sensor_adr[require_id(m, mjOBJ_SENSOR, kAccelerometerName)];
+  ids.stand_weld = require_id(m, mjOBJ_EQUALITY, kTestStandName);
+  ids.stand_mocap = m.body_mocapid[require_id(m, mjOBJ_BODY, kTestStandName)];
 }
 
 // Each joint starts locked at its initial angle (Remark 3.1: vertical) with the shaft at the
@@ -164,6 +172,7 @@ void RoverPhysics::Impl::update_joint_modes() {
     joints[slot].update(data->qpos[ids.shaft_qpos[motor]], data->qpos[ids.joint_qpos[slot]],
                         command_radps);
     apply_joint_mode(slot);
+    apply_joint_lock_brake(slot, command_radps);
   }
 }
 
@@ -198,6 +207,33 @@ void RoverPhysics::Impl::apply_joint_mode(std::size_t slot) {
   }
 }
 
+// The lock while pushing: a load that aids the motor (gravity on a lever that swings down) cannot
+// turn the joint faster than the motor turns it — the lock carries the excess, not the motor. So a
+// pushing shaft that runs ahead of its no-load speed ω0 meets a stiff brake at ω0 (the lock);
+// below ω0 the motor's speed–torque line applies unchanged. The brake is the motor's actuator
+// with a stiffer line and a braking limit of the lock's, switched each step by the shaft's speed;
+// shaft_torque_nm() still reports the motor's own torque on its line.
+void RoverPhysics::Impl::apply_joint_lock_brake(std::size_t slot, double no_load_speed_radps) {
+  const std::size_t motor = kJointMotors[slot];
+  const int actuator = ids.motor_actuator[motor];
+  const double speed_radps = data->qvel[ids.shaft_dof[motor]];
+  const bool pushing = joints[slot].mode() != JointMode::kLocked;
+  const bool overrun = powered && pushing &&
+                       (no_load_speed_radps > 0.0 ? speed_radps > no_load_speed_radps
+                                                  : speed_radps < no_load_speed_radps);
+  joint_overrun[slot] = overrun;
+  if (!powered) return;
+  mjModel& m = *model;
+  const double stall = drive.stall_torque_nm[motor];
+  const double gain = overrun ? kLockBrakeGainNmsPerRad : 1.0 / drive.droop_radps_per_nm[motor];
+  m.actuator_gainprm[actuator * mjNGAIN] = gain;
+  m.actuator_biasprm[actuator * mjNBIAS + 2] = -gain;
+  m.actuator_forcerange[actuator * 2] =
+      overrun && no_load_speed_radps > 0.0 ? -kLockBrakeTorqueNm : -stall;
+  m.actuator_forcerange[actuator * 2 + 1] =
+      overrun && no_load_speed_radps < 0.0 ? kLockBrakeTorqueNm : stall;
+}
+
 RoverPhysics::RoverPhysics(const Params& params, const TerrainSpec& terrain, double timestep_s)
     : impl_(std::make_unique<Impl>(params, terrain, timestep_s)) {}
 
@@ -217,9 +253,78 @@ void RoverPhysics::set_drive(const MotorDrive& drive) {
   impl_->apply_drive();
 }
 
+void RoverPhysics::Impl::apply_strapped_weights() {
+  for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
+    // A weight at the rim's angle φ (the wheel's hinge angle, 0 with the weight at the top):
+    // gravity pulls it down the rim, τ = peak·sin φ about the hinge.
+    const double peak = strapped_peak_torque_nm[wheel];
+    data->qfrc_applied[ids.shaft_dof[wheel]] =
+        peak == 0.0 ? 0.0 : peak * std::sin(data->qpos[ids.shaft_qpos[wheel]]);
+  }
+}
+
 void RoverPhysics::step() {
   impl_->update_joint_modes();
+  impl_->apply_strapped_weights();
+  impl_->apply_skid_sinkage();
   mj_step(impl_->model.get(), impl_->data.get());
+}
+
+void RoverPhysics::place_on_stand(double roll_rad, double pitch_rad) {
+  if (!std::isfinite(roll_rad) || !std::isfinite(pitch_rad)) {
+    throw std::invalid_argument("physics: the stand's roll and pitch must be finite");
+  }
+  mjModel& m = *impl_->model;
+  mjData& d = *impl_->data;
+  const RoverModelIds& ids = impl_->ids;
+  // R = Ry(pitch)·Rx(roll): roll about x1 first, then pitch about the world's y.
+  const double cr = std::cos(roll_rad / 2), sr = std::sin(roll_rad / 2);
+  const double cp = std::cos(pitch_rad / 2), sp = std::sin(pitch_rad / 2);
+  const std::array<double, 4> quat{cp * cr, cp * sr, sp * cr, -sp * sr};
+  // 1 m above where the rover stood (the stand's own height when it is already on it).
+  const bool already = m.eq_active[ids.stand_weld] != 0;
+  const std::array<double, 3> position{
+      d.qpos[ids.free_qpos], d.qpos[ids.free_qpos + 1],
+      already ? d.mocap_pos[3 * ids.stand_mocap + 2] : d.qpos[ids.free_qpos + 2] + 1.0};
+  for (int i = 0; i < 3; ++i) d.mocap_pos[3 * ids.stand_mocap + i] = position[i];
+  for (int i = 0; i < 4; ++i) d.mocap_quat[4 * ids.stand_mocap + i] = quat[i];
+  for (int i = 0; i < 3; ++i) d.qpos[ids.free_qpos + i] = position[i];
+  for (int i = 0; i < 4; ++i) d.qpos[ids.free_qpos + 3 + i] = quat[i];
+  for (int i = 0; i < 6; ++i) d.qvel[ids.free_dof + i] = 0.0;
+  m.eq_active[ids.stand_weld] = 1;
+  mj_forward(&m, &d);
+}
+
+void RoverPhysics::place_on_ground() {
+  mjModel& m = *impl_->model;
+  mjData& d = *impl_->data;
+  const RoverModelIds& ids = impl_->ids;
+  if (m.eq_active[ids.stand_weld] == 0) return;
+  m.eq_active[ids.stand_weld] = 0;
+  // Level, just above the ground under the wheels where the stand stood.
+  const double x = d.qpos[ids.free_qpos];
+  const double y = d.qpos[ids.free_qpos + 1];
+  d.qpos[ids.free_qpos + 2] = 0.0;
+  d.qpos[ids.free_qpos + 3] = 1.0;
+  for (int i = 4; i < 7; ++i) d.qpos[ids.free_qpos + i] = 0.0;
+  for (int i = 0; i < 6; ++i) d.qvel[ids.free_dof + i] = 0.0;
+  mj_kinematics(&m, &d);
+  d.qpos[ids.free_qpos + 2] =
+      ground_height_under_wheels_m(m, d, ids, impl_->params.geometry.wheel_radius_m) +
+      impl_->params.geometry.wheel_radius_m + kStartClearanceM;
+  d.qpos[ids.free_qpos] = x;
+  d.qpos[ids.free_qpos + 1] = y;
+  mj_forward(&m, &d);
+}
+
+bool RoverPhysics::on_stand() const { return impl_->model->eq_active[impl_->ids.stand_weld] != 0; }
+
+void RoverPhysics::strap_weight(std::size_t wheel, double peak_torque_nm) {
+  if (wheel >= kWheelCount) throw std::out_of_range("physics: no wheel " + std::to_string(wheel));
+  if (!std::isfinite(peak_torque_nm) || peak_torque_nm < 0.0) {
+    throw std::invalid_argument("physics: a strapped weight's peak torque must be ≥ 0 N·m");
+  }
+  impl_->strapped_peak_torque_nm[wheel] = peak_torque_nm;
 }
 
 double RoverPhysics::time_s() const { return impl_->data->time; }

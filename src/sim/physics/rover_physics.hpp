@@ -83,6 +83,18 @@ class RoverPhysics {
   void set_wheel_blocked(std::size_t wheel, bool blocked);
   void set_wheel_contact(std::size_t wheel, bool has_contact);
 
+  // The calibration stand: the center unit held 1 m above the ground, all wheels free, turned by
+  // R = Ry(pitch)·Rx(roll) (roll about x1 first, then pitch; right-hand rule, like GroundTruth's
+  // angles). The accelerometer then reads gravity in the turned frame: roll = +π/2 puts the
+  // left side (x2) up. place_on_ground() sets the rover level back on the ground beneath.
+  void place_on_stand(double roll_rad, double pitch_rad);
+  void place_on_ground();
+  bool on_stand() const;
+  // A weight strapped to a wheel's rim (Procedure 4.13): a gravity torque peak·sin φ on the
+  // wheel's hinge, φ its angle (0: the weight at the top). 0 removes it. The stand keeps the
+  // chassis level, so φ is measured from the vertical.
+  void strap_weight(std::size_t wheel, double peak_torque_nm);
+
   // How many warnings MuJoCo raised (instability, contact buffer full, …): 0 in a healthy run.
   int mujoco_warning_count() const;
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "sim/physics/joint_drive.hpp"
 #include "sim/physics/mujoco_model.hpp"
@@ -22,6 +23,8 @@ struct RoverModelIds {
   std::array<int, 2> joint_qpos{}, joint_lock{}, joint_coupling{};
   std::array<int, 2> tilt_qpos{};
   int accelerometer = -1;  // sensordata address
+  int stand_weld = -1;     // equality holding the center unit on the calibration stand
+  int stand_mocap = -1;    // the stand's mocap index
 };
 
 struct RoverPhysics::Impl {
@@ -33,6 +36,9 @@ struct RoverPhysics::Impl {
   void apply_drive();
   void update_joint_modes();
   void apply_joint_mode(std::size_t slot);
+  void apply_joint_lock_brake(std::size_t slot, double no_load_speed_radps);
+  void resolve_terrain_materials(const TerrainSpec& terrain);
+  void apply_skid_sinkage();
 
   Params params;
   ModelPtr model;
@@ -41,7 +47,14 @@ struct RoverPhysics::Impl {
   MotorDrive drive{};
   bool powered = false;  // false until the first set_drive: the motors deliver no torque
   std::array<JointDrive, 2> joints;
+  std::array<bool, 2> joint_overrun{};  // a pushing shaft ahead of ω0, braked by the lock
+  // Per geom: the terrain material's μ and skid sinkage (0 for the rover's own geoms).
+  std::vector<double> geom_ground_friction, geom_skid_sinkage;
+  std::array<double, kWheelCount> wheel_own_friction{};  // the wheels' geom μ as built
   std::array<std::array<double, 2>, 2> joint_stops_rad{}, shaft_stops_rad{};  // the model's ranges
+  // Weights strapped to wheels (Procedure 4.13): peak gravity torque per wheel [N·m], 0 for none.
+  std::array<double, kWheelCount> strapped_peak_torque_nm{};
+  void apply_strapped_weights();
 };
 
 }  // namespace marsokhod::sim

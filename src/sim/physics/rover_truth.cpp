@@ -2,6 +2,7 @@
 // The pose, joint angles and velocities are the state after the last step. What MuJoCo derives
 // in its forward pass (contacts, wheel positions and slip, the accelerometer) belongs to the state
 // at the start of the last step, one timestep older: recomputing it would double a step's cost.
+#include <algorithm>
 #include <cmath>
 
 #include "sim/physics/rover_physics_impl.hpp"
@@ -87,6 +88,17 @@ MotorVector RoverPhysics::shaft_torque_nm() const {
   MotorVector out{};
   for (std::size_t motor = 0; motor < kMotorCount; ++motor) {
     out[motor] = impl_->data->actuator_force[impl_->ids.motor_actuator[motor]];
+  }
+  // A joint shaft held back by its lock: the motor itself runs on its line near ω0, the lock
+  // bears the rest.
+  for (std::size_t slot = 0; slot < 2; ++slot) {
+    if (!impl_->joint_overrun[slot]) continue;
+    const std::size_t motor = slot == 0 ? kFrontJoint : kRearJoint;
+    const MotorDrive& drive = impl_->drive;
+    const double line = (drive.no_load_speed_radps[motor] -
+                         impl_->data->qvel[impl_->ids.shaft_dof[motor]]) /
+                        drive.droop_radps_per_nm[motor];
+    out[motor] = std::clamp(line, -drive.stall_torque_nm[motor], drive.stall_torque_nm[motor]);
   }
   return out;
 }

@@ -136,6 +136,7 @@ Material material_from(const toml::node* node, TableReader& owner, const Materia
   material.sliding_friction = reader.number("friction", 0.0, 10.0);
   material.torsional_friction_m = reader.number_or("torsional_friction_m", 0.0, 1.0, 0.0);
   material.rolling_friction_m = reader.number_or("rolling_friction_m", 0.0, 1.0, 0.0);
+  material.skid_sinkage = reader.number_or("skid_sinkage", 0.0, 10.0, 0.0);
   reader.reject_unknown_keys();
   return material;
 }
@@ -211,7 +212,8 @@ void validate_material(const Material& material, const std::string& where) {
   require(std::isfinite(material.sliding_friction) && material.sliding_friction >= 0.0 &&
               std::isfinite(material.torsional_friction_m) &&
               material.torsional_friction_m >= 0.0 && std::isfinite(material.rolling_friction_m) &&
-              material.rolling_friction_m >= 0.0,
+              material.rolling_friction_m >= 0.0 && std::isfinite(material.skid_sinkage) &&
+              material.skid_sinkage >= 0.0,
           where + " friction coefficients must be finite and not negative");
 }
 
@@ -247,9 +249,9 @@ void validate_heightfield(const Heightfield& field) {
 
 }  // namespace
 
-Material hard_ground() { return Material{0.9, 0.0, 0.0}; }
+Material hard_ground() { return Material{0.9, 0.0, 0.0, 0.0}; }
 
-Material sand() { return Material{0.5, 0.0, 0.02}; }
+Material sand() { return Material{0.5, 0.0, 0.02, 2.0}; }
 
 std::string to_string(TerrainKind kind) {
   switch (kind) {

@@ -25,15 +25,27 @@ namespace marsokhod::sim {
 // C_rr times the wheel radius: C_rr = 0.16 on r = 0.125 m gives 0.02 m. Chosen over a
 // speed-proportional wheel damping because sand resists a slowly rolling wheel as much as a fast
 // one, and because it acts at the contact (a lifted wheel spins freely).
+//
+// Skid sinkage: a wheel that is dragged over loose ground faster than it turns (a rigid wheel,
+// Field Experiment 6.2) digs in and pushes a bank of sand ahead of it, which a rolling wheel rolls
+// over. RoverPhysics raises such a wheel's sliding friction by skid_sinkage · s, s ∈ [0, 1] the
+// skid ratio: along the wheel's heading, the speed at which its contact point slides the same way
+// as its hub moves, over the hub's speed (regularised below 1 cm/s). A fully skidding wheel
+// resists with (μ + skid_sinkage)·N in every direction; a rolling wheel, or a driving one whose
+// contact slides backwards under it (s = 0), with μ·N as before.
 struct Material {
   double sliding_friction = 0.9;      // μ, Coulomb friction along the ground
   double torsional_friction_m = 0.0;  // resistance to spinning about the contact normal
   double rolling_friction_m = 0.0;    // rolling resistance (see above); > 0 selects condim 6
+  double skid_sinkage = 0.0;          // extra friction of a skidding wheel (see above)
 };
 
-// Hard ground (carpet-covered wheels on a lab floor, packed soil, rock): μ ≈ 0.9, no rolling loss.
+// Hard ground (carpet-covered wheels on a lab floor, packed soil, rock): μ ≈ 0.9, no rolling loss,
+// no sinkage.
 Material hard_ground();
-// Loose sand: μ = 0.5 and a rolling resistance C_rr ≈ 0.16 (0.02 m on the 0.125 m wheel).
+// Loose sand: μ = 0.5, a rolling resistance C_rr ≈ 0.16 (0.02 m on the 0.125 m wheel) and a skid
+// sinkage of 2: a rigid wheel dragged through it ploughs with 2.5 times its load, so that with a
+// rigid front wheel "driving forward was barely possible" (Field Experiment 6.2).
 Material sand();
 
 enum class TerrainKind { kFlat, kSlope, kObstacles, kHeightfield };
@@ -84,7 +96,8 @@ void validate(const TerrainSpec& terrain);
 //
 //   kind = "flat" | "slope" | "obstacles" | "heightfield"
 //   material = "hard" | "sand" | { friction = 0.7, torsional_friction_m = 0.0,
-//                                  rolling_friction_m = 0.01 }           # optional, "hard"
+//                                  rolling_friction_m = 0.01,
+//                                  skid_sinkage = 0.0 }                  # optional, "hard"
 //   slope_deg = 15.0                       # kind = "slope": + is uphill driving +x
 //   image = "dunes.pgm"                    # kind = "heightfield": a P2/P5 PGM
 //   size_m = [8.0, 6.0]                    #   its extent along x (columns) and y (rows)

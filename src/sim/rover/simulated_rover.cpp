@@ -8,8 +8,9 @@ namespace marsokhod::sim {
 namespace {
 
 SimTruth truth_for(const Params& nominal, const SimOptions& options) {
-  SimTruth truth = options.nominal_unit ? exact_sim_truth(nominal)
-                                        : make_sim_truth(nominal, options.seed);
+  SimTruth truth = options.unit           ? *options.unit
+                   : options.nominal_unit ? exact_sim_truth(nominal)
+                                          : make_sim_truth(nominal, options.seed);
   truth.power.supply = options.supply;
   return truth;
 }
@@ -31,6 +32,14 @@ void require_fraction(double value, const std::string& name) {
   }
 }
 
+// The physics' gaps are the unit's true backlash, not the configured one (Procedure 4.1).
+Params with_true_backlash(Params params, const SimTruth& truth) {
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    params.motors.backlash_rad[i] = truth.motors[i].backlash_rad;
+  }
+  return params;
+}
+
 Params with_shaft_angles(Params params, const MotorVector& shaft_angle_rad) {
   params.motors.initial_position_rad = shaft_angle_rad;
   return params;
@@ -41,7 +50,7 @@ Params with_shaft_angles(Params params, const MotorVector& shaft_angle_rad) {
 SimulatedRover::SimulatedRover(const Params& nominal, const SimOptions& options)
     : params_(&nominal),
       truth_(truth_for(nominal, options)),
-      physics_(nominal, options.terrain, options.physics_timestep_s),
+      physics_(with_true_backlash(nominal, truth_), options.terrain, options.physics_timestep_s),
       firmware_params_(with_shaft_angles(nominal, physics_.shaft_angle_rad())),
       electrics_(truth_),
       firmware_(firmware_params_, truth_, options.seed,

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/params.hpp"
@@ -28,6 +29,9 @@ struct SimOptions {
   double physics_timestep_s = 0.001;
   bool nominal_unit = false;  // true: the configured ζ, ±g table … (exact_sim_truth), else drawn
   SupplyKind supply = SupplyKind::kBattery;
+  // A unit given explicitly (tests): the same rover under different driver configurations, e.g.
+  // nominal and calibrated Params. Overrides seed's draw and nominal_unit; supply still applies.
+  std::optional<SimTruth> unit;
 };
 
 // A frame the rover's controllers put on the bus, and when the driver side has it.
@@ -77,6 +81,19 @@ class SimulatedRover {
   // A battery emptier than new (ignored on the tether); throws std::invalid_argument.
   void set_state_of_charge(double state_of_charge) {
     electrics_.set_state_of_charge(state_of_charge);
+  }
+
+  // The calibration bench's hands (Procedures 3.3, 3.5, 4.4–4.13), never reachable from the bus:
+  // the tether's set voltage (std::invalid_argument on the battery), the stand and strapped
+  // weights (rover_physics.hpp).
+  void set_tether_voltage(double set_v) { electrics_.set_tether_voltage(set_v); }
+  void place_on_stand(double roll_rad, double pitch_rad) {
+    physics_.place_on_stand(roll_rad, pitch_rad);
+  }
+  void place_on_ground() { physics_.place_on_ground(); }
+  bool on_stand() const { return physics_.on_stand(); }
+  void strap_weight(std::size_t wheel, double peak_torque_nm) {
+    physics_.strap_weight(wheel, peak_torque_nm);
   }
 
  private:

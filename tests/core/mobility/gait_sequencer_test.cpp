@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -191,6 +192,29 @@ TEST(GaitSequencer, ZeroSpeedHolds) {
   const std::vector<std::size_t> visited =
       run_states(rover, Gait::kWormLike, 1.0, DrivingIntent::kForward, 1);
   EXPECT_EQ(visited, (std::vector<std::size_t>{1, 0}));
+}
+
+// "The motors are stopped" is judged on the measured joint velocity when the driver has one: the
+// commanded ŵ (the velocity state) can stay at 0.04 rad/s while the motor stands in its dead zone.
+TEST(GaitSequencer, StoppedIsTheMeasuredJointVelocity) {
+  const auto next_state = [](double state_radps, std::optional<double> measured_radps) {
+    GaitSequencer sequencer{GeometryParams{}, JointParams{}, GaitParams{}, MotorParams{}};
+    const GaitOutput first = sequencer.update(
+        {Gait::kRolking, 1.0, DrivingIntent::kForward, {-1.7, 0.0}, {1.7, 0.0}, kPeriodS});
+    GaitInput at_target{Gait::kRolking,
+                        1.0,
+                        DrivingIntent::kForward,
+                        {first.front_target_rad, state_radps},
+                        {first.rear_target_rad, state_radps},
+                        kPeriodS,
+                        measured_radps,
+                        measured_radps};
+    return sequencer.update(at_target).state_index != first.state_index;
+  };
+  EXPECT_TRUE(next_state(0.04, 0.0));   // standing in the dead zone: stopped
+  EXPECT_FALSE(next_state(0.0, 0.04));  // still moving although the command reached 0
+  EXPECT_FALSE(next_state(0.04, std::nullopt));  // no measurement: the velocity state decides
+  EXPECT_TRUE(next_state(0.0, std::nullopt));
 }
 
 // |s| scales C: at s = 0.5 the control stays within 0.5·C and a transition takes longer.

@@ -48,6 +48,18 @@ TEST(JointDrive, LocksWhereTheJointIsWhenTheCommandStopsOrReverses) {
   EXPECT_EQ(drive.mode(), JointMode::kPushingDown);
 }
 
+// The lock holds the joint softly: under load it may creep a fraction of a milliradian from the
+// held angle, while the shaft's stops stay at the held angle (and p + b). A shaft on its stop
+// still engages: the gap is measured from the held angle, not from the crept joint.
+TEST(JointDrive, EngagesAtTheStopEvenWhenTheLockedJointCrept) {
+  JointDrive down(-1.21811, 0.052);
+  EXPECT_TRUE(down.update(-1.21811, -1.21823, -0.3));
+  EXPECT_EQ(down.mode(), JointMode::kPushingDown);
+  JointDrive up(1.2121, 0.25);
+  EXPECT_TRUE(up.update(1.2121 + 0.25, 1.2123, 0.3));
+  EXPECT_EQ(up.mode(), JointMode::kPushingUp);
+}
+
 TEST(JointDrive, TheRatchetNeverRetreats) {
   JointDrive drive(-1.2121, 0.052);
   drive.update(-1.2121, -1.2121, -0.5);

@@ -205,6 +205,32 @@ TEST(RoverPhysics, AWeakMotorStallsButIsNeverBackDriven) {
   expect_healthy(physics);
 }
 
+// The lock while pushing (chapter 5.3): a load that aids the motor cannot drive the joint ahead of
+// it. Extending the front joint with the wheels rolling free, the rover's weight swings the lever
+// down; with a soft speed–torque line (droop 0.3 rad/s per N·m) that aiding load would run the
+// shaft far beyond ω0 = 0.3 rad/s. The joint advances at ω0 and the motor itself bears ≈ no load.
+TEST(RoverPhysics, AnAidingLoadNeverDrivesAJointAheadOfItsMotor) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  physics.set_drive(drive_at({}));
+  run(physics, 300);
+  MotorVector speeds{};
+  speeds[kFrontJoint] = -0.3;
+  MotorDrive drive = joints_only(speeds);
+  drive.droop_radps_per_nm[kFrontJoint] = 0.3;
+  physics.set_drive(drive);
+  const double start_rad = physics.truth().joint_angle_rad[kFrontJoint];
+  double previous_rad = start_rad;
+  for (int step = 0; step < 3000; ++step) {
+    physics.step();
+    const double joint_rad = physics.truth().joint_angle_rad[kFrontJoint];
+    ASSERT_GE((joint_rad - previous_rad) / physics.timestep_s(), -0.3 - 0.01) << step;
+    previous_rad = joint_rad;
+  }
+  EXPECT_LT(physics.truth().joint_angle_rad[kFrontJoint], start_rad - 0.5);  // it did extend
+  EXPECT_NEAR(physics.shaft_torque_nm()[kFrontJoint], 0.0, 0.1);
+  expect_healthy(physics);
+}
+
 TEST(RoverPhysics, ABlockedWheelStallsItsMotor) {
   RoverPhysics physics(Params{}, TerrainSpec{});
   run(physics, 300);
@@ -219,6 +245,45 @@ TEST(RoverPhysics, ABlockedWheelStallsItsMotor) {
   EXPECT_NEAR(physics.shaft_velocity_radps()[kCenterLeft], 1.0, 0.05);
   EXPECT_THROW(physics.set_wheel_blocked(6, true), std::out_of_range);
   expect_healthy(physics);
+}
+
+// Sinkage (terrain.hpp): a rigid wheel dragged through sand ploughs, a rolling one does not.
+// - On flat sand with all wheels driven at 2 rad/s for 3 s, the rover covers the same ground with
+//   and without skid sinkage: no wheel skids.
+// - With all six wheels rigid on a 30° sand slope, μ = 0.5 < tan 30° = 0.577: without sinkage the
+//   rover slides off, (sin 30° − μ cos 30°)·g = 0.66 m/s² (> 0.5 m/s after 2 s, contact losses
+//   aside); with sinkage the skidding wheels resist with μ + 2·v/(1 cm/s), which balances the
+//   slope at v = 1 cm/s·(tan 30° − μ)/2 = 0.4 mm/s: it crawls (below 1 cm/s).
+TEST(RoverPhysics, ARigidWheelPloughsThroughSandARollingOneDoesNot) {
+  const auto driven_m = [](double sinkage) {
+    TerrainSpec terrain;
+    terrain.ground = sand();
+    terrain.ground.skid_sinkage = sinkage;
+    RoverPhysics physics(Params{}, terrain);
+    run(physics, 300);
+    const double start = physics.truth().position_m[0];
+    physics.set_drive(drive_at(all_wheels(2.0)));
+    run(physics, 3000);
+    expect_healthy(physics);
+    return physics.truth().position_m[0] - start;
+  };
+  const double rolling = driven_m(sand().skid_sinkage);
+  EXPECT_GT(rolling, 0.3);
+  EXPECT_NEAR(rolling, driven_m(0.0), 0.01 * rolling);
+  const auto sliding_mps = [](double sinkage) {
+    TerrainSpec terrain = testing::slope_deg(30.0);
+    terrain.ground = sand();
+    terrain.ground.skid_sinkage = sinkage;
+    RoverPhysics physics(Params{}, terrain);
+    for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
+      physics.set_wheel_blocked(wheel, true);
+    }
+    run(physics, 2000);
+    expect_healthy(physics);
+    return std::hypot(physics.truth().velocity_mps[0], physics.truth().velocity_mps[2]);
+  };
+  EXPECT_GT(sliding_mps(0.0), 0.5);
+  EXPECT_LT(sliding_mps(sand().skid_sinkage), 0.01);
 }
 
 TEST(RoverPhysics, AWheelWithoutContactSpinsFree) {

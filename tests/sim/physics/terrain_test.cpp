@@ -37,6 +37,8 @@ TEST(TerrainMaterials, SandIsSlipperierAndResistsRolling) {
   EXPECT_DOUBLE_EQ(hard_ground().rolling_friction_m, 0.0);
   EXPECT_LT(sand().sliding_friction, hard_ground().sliding_friction);
   EXPECT_GT(sand().rolling_friction_m, 0.0);
+  EXPECT_DOUBLE_EQ(hard_ground().skid_sinkage, 0.0);  // only loose ground lets a wheel dig in
+  EXPECT_GT(sand().skid_sinkage, 0.0);
 }
 
 TEST(TerrainFromToml, FlatHardGroundByDefault) {
@@ -55,6 +57,10 @@ TEST(TerrainFromToml, NamedAndCustomMaterials) {
   EXPECT_DOUBLE_EQ(custom.ground.sliding_friction, 0.7);
   EXPECT_DOUBLE_EQ(custom.ground.torsional_friction_m, 0.0);
   EXPECT_DOUBLE_EQ(custom.ground.rolling_friction_m, 0.01);
+  EXPECT_DOUBLE_EQ(custom.ground.skid_sinkage, 0.0);
+  const TerrainSpec sinking =
+      read("[terrain]\nkind = \"flat\"\nmaterial = { friction = 0.5, skid_sinkage = 1.5 }\n");
+  EXPECT_DOUBLE_EQ(sinking.ground.skid_sinkage, 1.5);
 }
 
 TEST(TerrainFromToml, SlopeInDegrees) {
