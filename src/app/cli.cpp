@@ -7,9 +7,11 @@
 #include <istream>
 #include <ostream>
 
+#include "app/calibrate_command.hpp"
 #include "app/decode_command.hpp"
 #include "app/live_commands.hpp"
 #include "app/scenario_command.hpp"
+#include "config/calibration.hpp"
 #include "config/load_params.hpp"
 
 namespace marsokhod::app {
@@ -56,6 +58,11 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   std::string config_file;
   cli.add_option("--config", config_file,
                  "configuration file (default: $MARSOKHOD_CONFIG, ./config/marsokhod.toml)")
+      ->check(CLI::ExistingFile);
+  std::string calibration_file;
+  cli.add_option("--calibration", calibration_file,
+                 "a calibration file (marsokhod calibrate) loaded on top of the configuration "
+                 "for the driver (default: $MARSOKHOD_CALIBRATION, else none)")
       ->check(CLI::ExistingFile);
 
   DecodeArgs decode;
@@ -116,6 +123,30 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
       ->check(CLI::NonNegativeNumber);
   drive_cmd->add_flag("--quiet", drive.quiet, "no status line in the terminal");
 
+  CalibrateArgs calibrate;
+  CLI::App* calibrate_cmd = cli.add_subcommand(
+      "calibrate", "run a calibration procedure of the thesis and write the calibration file");
+  calibrate_cmd->add_option("PROCEDURE", calibrate.procedure,
+                            "accelerometer, voltage, joints, motor-curve, motor-scale, response, "
+                            "load, spin or voltage-drop (--list describes them)");
+  calibrate_cmd->add_flag("--list", calibrate.list, "name the procedures");
+  calibrate_cmd->add_flag("--sim", calibrate.sim, "on the simulated rover (a laboratory bench)");
+  calibrate_cmd->add_option("--can", calibrate.can,
+                            "on a real or remote bus: socketcan:can0 or socketcand://HOST:PORT/CHANNEL");
+  calibrate_cmd->add_option("--out", calibrate.out, "the calibration file (default calibration.toml)");
+  calibrate_cmd->add_flag("--force", calibrate.force,
+                          "update an existing calibration file (other procedures' values are kept)");
+  calibrate_cmd->add_option("--plot", calibrate.plot, "write the measured data and plots here");
+  calibrate_cmd->add_option("--seed", calibrate.seed, "the simulated unit (--sim)");
+  calibrate_cmd->add_option("--duration", calibrate.duration_s,
+                            "how long to measure [s] (motor-scale, response, voltage)")
+      ->check(CLI::PositiveNumber);
+  calibrate_cmd->add_option("--icr", calibrate.icr, "the PWM period register (motor-curve, load)")
+      ->check(CLI::Range(255, 2047));
+  calibrate_cmd->add_option("--from", calibrate.from,
+                            "voltage-drop: a scenario's --out folder with telemetry.csv")
+      ->check(CLI::ExistingDirectory);
+
   std::string replay_dir;
   CLI::App* replay_cmd = cli.add_subcommand(
       "replay", "re-run the driver over a recording and compare every request, bit for bit");
@@ -139,21 +170,34 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     err << "marsokhod: no configuration file: pass --config FILE or set MARSOKHOD_CONFIG\n";
     return kUsageError;
   }
-  Params params;
+  LoadedConfig loaded;
+  loaded.config_file = *config_path;
+  if (calibration_file.empty()) {
+    if (const char* env = std::getenv("MARSOKHOD_CALIBRATION"); env != nullptr && *env != '\0') {
+      calibration_file = env;
+    }
+  }
   try {
-    params = config::load_params(*config_path);
+    loaded.nominal = config::load_params(*config_path);
+    loaded.params = loaded.nominal;
+    if (!calibration_file.empty()) {
+      loaded.calibration_file = calibration_file;
+      loaded.params = config::load_params(*config_path, calibration_file);
+    }
   } catch (const config::ConfigError& e) {
     err << "marsokhod: " << e.what() << "\n";
     return kUsageError;
   }
+  const Params& params = loaded.params;
   if (decode_cmd->parsed()) return run_decode(decode, params, in, out, err);
   if (scenario_cmd->parsed()) {
     if (seed_option->count() > 0) scenario.seed = seed;
-    return run_scenario_command(scenario, params, *config_path, out, err);
+    return run_scenario_command(scenario, loaded, out, err);
   }
+  if (calibrate_cmd->parsed()) return run_calibrate_command(calibrate, loaded, in, out, err);
   if (replay_cmd->parsed()) return run_replay_command(replay_dir, params, out, err);
-  if (run_cmd->parsed()) return run_live(run, params, *config_path, out, err);
-  if (sim_cmd->parsed()) return run_sim(sim, params, out, err);
+  if (run_cmd->parsed()) return run_live(run, loaded, out, err);
+  if (sim_cmd->parsed()) return run_sim(sim, loaded.nominal, out, err);
   if (drive_cmd->parsed()) return run_drive(drive, params, out, err);
   return kUsageError;
 }

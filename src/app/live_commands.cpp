@@ -130,20 +130,26 @@ std::optional<std::filesystem::path> find_web_dist(const std::string& given) {
   return std::nullopt;
 }
 
-int run_live(const RunArgs& args, const Params& params, const std::filesystem::path& config_file,
-             std::ostream& out, std::ostream& err) {
+int run_live(const RunArgs& args, const LoadedConfig& config, std::ostream& out,
+             std::ostream& err) {
+  const Params& params = config.params;
   std::optional<runner::Scenario> scenario;
   std::unique_ptr<runner::Session> session;
   std::unique_ptr<ConsoleLink> console;
   std::unique_ptr<runner::Recorder> recorder;
   try {
-    session = std::make_unique<runner::Session>(params, sim_options(args.scenario, args.seed, scenario));
+    session = std::make_unique<runner::Session>(config.nominal, params,
+                                                sim_options(args.scenario, args.seed, scenario));
     console = std::make_unique<ConsoleLink>(params, args.console, out);
-    if (!args.record.empty()) recorder = std::make_unique<runner::Recorder>(args.record, config_file);
+    if (!args.record.empty()) {
+      recorder = std::make_unique<runner::Recorder>(args.record, config.config_file,
+                                                    config.calibration_file);
+    }
   } catch (const std::exception& e) {
     err << "marsokhod run: " << e.what() << "\n";
     return kUsageError;
   }
+  out << describe_calibration(params) << "\n";
   install_signal_handlers();
   const auto start = Clock::now();
   const auto period = std::chrono::microseconds(session->cycle_us());
@@ -231,7 +237,8 @@ int run_drive(const DriveArgs& args, const Params& params, std::ostream& out, st
     err << "marsokhod drive: " << e.what() << "\n";
     return kUsageError;
   }
-  out << "driving over " << transport->name() << "\n" << std::flush;
+  out << "driving over " << transport->name() << "; " << describe_calibration(params) << "\n"
+      << std::flush;
   install_signal_handlers();
   driver::Driver driver(params);
   const auto start = Clock::now();

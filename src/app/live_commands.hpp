@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "app/loaded_config.hpp"
 #include "core/params.hpp"
 
 namespace marsokhod::app {
@@ -47,8 +48,9 @@ struct DriveArgs {
   bool quiet = false;
 };
 
-int run_live(const RunArgs& args, const Params& params, const std::filesystem::path& config_file,
-             std::ostream& out, std::ostream& err);
+// The driver runs with config.params, the simulated rover is built from config.nominal.
+int run_live(const RunArgs& args, const LoadedConfig& config, std::ostream& out,
+             std::ostream& err);
 int run_sim(const SimArgs& args, const Params& params, std::ostream& out, std::ostream& err);
 int run_drive(const DriveArgs& args, const Params& params, std::ostream& out, std::ostream& err);
 

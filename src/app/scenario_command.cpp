@@ -5,6 +5,7 @@
 #include <ostream>
 #include <set>
 
+#include "config/calibration.hpp"
 #include "config/load_params.hpp"
 #include "runner/replay.hpp"
 #include "runner/scenario_runner.hpp"
@@ -56,9 +57,9 @@ std::vector<std::filesystem::path> scenario_folders() {
   return folders;
 }
 
-int run_scenario_command(const ScenarioArgs& args, const Params& params,
-                         const std::filesystem::path& config_file, std::ostream& out,
+int run_scenario_command(const ScenarioArgs& args, const LoadedConfig& config, std::ostream& out,
                          std::ostream& err) {
+  const Params& params = config.params;
   if (args.list) {
     std::set<std::string> seen;
     for (const auto& folder : scenario_folders()) {
@@ -93,7 +94,9 @@ int run_scenario_command(const ScenarioArgs& args, const Params& params,
   runner::RunOptions options;
   options.seed = args.seed;
   if (!args.out.empty()) options.out = args.out;
-  options.config_file = config_file;
+  options.config_file = config.config_file;
+  options.calibration_file = config.calibration_file;
+  options.rover_params = &config.nominal;
   options.plots = !args.no_plots;
   runner::ScenarioResult result;
   try {
@@ -120,7 +123,12 @@ int run_replay_command(const std::string& folder, const Params& params, std::ost
   try {
     Params recorded = params;
     const auto config = std::filesystem::path(folder) / "config.toml";
-    if (std::filesystem::is_regular_file(config, ec)) recorded = config::load_params(config);
+    const auto calibration = std::filesystem::path(folder) / "calibration.toml";
+    if (std::filesystem::is_regular_file(calibration, ec)) {
+      recorded = config::load_params(config, calibration);
+    } else if (std::filesystem::is_regular_file(config, ec)) {
+      recorded = config::load_params(config);
+    }
     const runner::ReplayResult r = runner::replay(folder, recorded);
     out << "replayed " << r.cycles << " cycles, compared " << r.frames_compared << " requests: "
         << (r.identical ? "identical to the recording, bit for bit\n" : "DIFFERENT\n");

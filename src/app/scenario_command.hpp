@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/loaded_config.hpp"
 #include "core/params.hpp"
 
 namespace marsokhod::app {
@@ -25,12 +26,12 @@ struct ScenarioArgs {
 std::vector<std::filesystem::path> scenario_folders();
 
 // 0 when every check passed, 1 when one failed, 2 for a bad argument or scenario file.
-int run_scenario_command(const ScenarioArgs& args, const Params& params,
-                         const std::filesystem::path& config_file, std::ostream& out,
+// The driver runs with config.params, the simulated rover is built from config.nominal.
+int run_scenario_command(const ScenarioArgs& args, const LoadedConfig& config, std::ostream& out,
                          std::ostream& err);
 
 // 0 when the replay is identical to the recording, 1 when it differs, 2 when it cannot be read.
-// The recording's own config.toml is used when it has one.
+// The recording's own config.toml (and calibration.toml on top) is used when it has one.
 int run_replay_command(const std::string& folder, const Params& params, std::ostream& out,
                        std::ostream& err);
 

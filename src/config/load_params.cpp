@@ -6,6 +6,7 @@
 #include <sstream>
 #include <utility>
 
+#include "config/calibration.hpp"
 #include "config/config_reader.hpp"
 
 namespace marsokhod::config {
@@ -226,6 +227,10 @@ Params parse_params(std::string_view toml_text, const std::string& source) {
         << ": TOML syntax error: " << e.description();
     throw ConfigError(source, {msg.str()});
   }
+  return params_from_table(root, source);
+}
+
+Params params_from_table(const toml::table& root, const std::string& source) {
   std::vector<std::string> problems;
   ConfigReader r(&root, "", problems);
   Params p;

@@ -189,6 +189,13 @@ struct ConsoleParams {
   double status_rate_hz = 20.0;           // status messages per second to each console
 };
 
+// Where the calibrated values came from (config/calibration.hpp): not read from the
+// configuration file; the loader fills it in when a calibration file is applied.
+struct CalibrationSource {
+  std::string file;                     // empty: the configuration's nominal values
+  std::vector<std::string> procedures;  // the procedures it holds, e.g. "voltage"
+};
+
 struct Params {
   GeometryParams geometry;
   CycleParams cycle;
@@ -215,6 +222,7 @@ struct Params {
   BehaviourParams behaviours;
   SafetyParams safety;
   ConsoleParams console;
+  CalibrationSource calibration;
 };
 
 }  // namespace marsokhod

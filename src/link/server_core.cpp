@@ -144,7 +144,7 @@ ClientId ServerCore::add_client(const std::shared_ptr<WebSocketSession>& session
     ++stats_.connections;
     stats_.clients = clients_.size();
   }
-  send_to(client, hello_json(client, arbiter_.controller()));
+  send_to(client, hello_json(client, arbiter_.controller(), params_.calibration));
   return client;
 }
 

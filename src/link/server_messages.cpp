@@ -9,12 +9,17 @@ nlohmann::json optional_id(std::optional<ClientId> id) {
 
 }  // namespace
 
-nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller) {
+nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller,
+                          const CalibrationSource& calibration) {
   return {{"type", "hello"},
           {"protocol", kProtocolVersion},
           {"client_id", client},
           {"controller", optional_id(controller)},
-          {"read_only", controller != client}};
+          {"read_only", controller != client},
+          {"calibration",
+           {{"file", calibration.file.empty() ? nlohmann::json(nullptr)
+                                              : nlohmann::json(calibration.file)},
+            {"procedures", calibration.procedures}}}};
 }
 
 nlohmann::json control_json(const ControlChange& change, ClientId recipient) {

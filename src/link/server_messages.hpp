@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/params.hpp"
 #include "link/control_arbiter.hpp"
 
 namespace marsokhod::link {
@@ -14,7 +15,10 @@ namespace marsokhod::link {
 inline constexpr int kProtocolVersion = 1;
 
 // {"type":"hello","protocol":1,"client_id":N,"controller":M|null,"read_only":bool}
-nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller);
+// `calibration` names the calibration file the driver loaded on top of the configuration (null
+// when it runs on the configuration's nominal values) and the procedures in it.
+nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller,
+                          const CalibrationSource& calibration = {});
 
 // {"type":"control","controller":M|null,"read_only":bool,"lost_control":bool,"reason":"…"},
 // as `recipient` sees it: lost_control is true for the client that held control before.

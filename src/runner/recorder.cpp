@@ -42,7 +42,8 @@ std::int64_t parse_time_us(const std::string& text) {
   return std::stoll(text.substr(0, dot)) * 1000000 + std::stoll(text.substr(dot + 1));
 }
 
-Recorder::Recorder(const std::filesystem::path& folder, const std::filesystem::path& config_file) {
+Recorder::Recorder(const std::filesystem::path& folder, const std::filesystem::path& config_file,
+                   const std::filesystem::path& calibration_file) {
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw std::runtime_error("cannot create " + folder.string() + ": " + ec.message());
@@ -54,6 +55,13 @@ Recorder::Recorder(const std::filesystem::path& folder, const std::filesystem::p
     std::filesystem::copy_file(config_file, folder / "config.toml",
                                std::filesystem::copy_options::overwrite_existing, ec);
     if (ec) throw std::runtime_error("cannot copy " + config_file.string() + ": " + ec.message());
+  }
+  if (!calibration_file.empty()) {
+    std::filesystem::copy_file(calibration_file, folder / "calibration.toml",
+                               std::filesystem::copy_options::overwrite_existing, ec);
+    if (ec) {
+      throw std::runtime_error("cannot copy " + calibration_file.string() + ": " + ec.message());
+    }
   }
 }
 

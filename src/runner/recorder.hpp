@@ -25,7 +25,10 @@ std::int64_t parse_time_us(const std::string& text);
 class Recorder {
  public:
   // Creates the folder; throws std::runtime_error naming the path if it cannot be written.
-  Recorder(const std::filesystem::path& folder, const std::filesystem::path& config_file);
+  // Copies config_file to config.toml and, when one is given, the calibration file the driver
+  // ran with to calibration.toml: replay needs the driver's exact Params.
+  Recorder(const std::filesystem::path& folder, const std::filesystem::path& config_file,
+           const std::filesystem::path& calibration_file = {});
 
   void record(const CycleRecord& cycle, const std::optional<driver::RuntimeSettings>& runtime,
               const driver::DriverStatus& status, const sim::SimulatedRover& rover);

@@ -85,11 +85,11 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   result.seed = options.seed.value_or(scenario.seed);
   sim::SimOptions sim = scenario.sim;
   sim.seed = result.seed;
-  Session session(params, sim);
+  Session session(options.rover_params != nullptr ? *options.rover_params : params, params, sim);
   if (scenario.state_of_charge) session.rover().set_state_of_charge(*scenario.state_of_charge);
   session.set_runtime(runtime_settings_from_json(scenario.runtime, session.runtime()));
   std::unique_ptr<Recorder> recorder;
-  if (options.out) recorder = std::make_unique<Recorder>(*options.out, options.config_file);
+  if (options.out) recorder = std::make_unique<Recorder>(*options.out, options.config_file, options.calibration_file);
   Metrics metrics(params, scenario.phases);
   std::size_t next_fault = 0, next_runtime = 0;
   const InputEvent* previous = nullptr;

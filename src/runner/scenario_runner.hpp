@@ -42,6 +42,11 @@ struct RunOptions {
   std::optional<std::uint64_t> seed;        // overrides the scenario's
   std::optional<std::filesystem::path> out; // the recording and plots
   std::filesystem::path config_file;        // copied into the recording
+  // The driver's calibration file (copied into the recording), and the configuration's nominal
+  // Params the simulated rover is built from: the unit must not follow the driver's calibration.
+  // Without them the rover is built from the driver's Params.
+  std::filesystem::path calibration_file;
+  const Params* rover_params = nullptr;
   bool plots = true;
 };
 

@@ -5,11 +5,15 @@
 namespace marsokhod::runner {
 
 Session::Session(const Params& params, const sim::SimOptions& options)
-    : params_(&params),
-      rover_(params, options),
-      driver_(std::make_unique<driver::Driver>(params)),
+    : Session(params, params, options) {}
+
+Session::Session(const Params& rover_params, const Params& driver_params,
+                 const sim::SimOptions& options)
+    : params_(&driver_params),
+      rover_(rover_params, options),
+      driver_(std::make_unique<driver::Driver>(driver_params)),
       runtime_(driver_->runtime()),
-      cycle_us_(std::llround(params.cycle.period_s * 1e6)) {}
+      cycle_us_(std::llround(driver_params.cycle.period_s * 1e6)) {}
 
 void Session::set_runtime(const driver::RuntimeSettings& settings) {
   driver::validate(settings);

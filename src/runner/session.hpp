@@ -34,6 +34,10 @@ struct CycleRecord {
 class Session {
  public:
   Session(const Params& params, const sim::SimOptions& options);
+  // The driver with its own (calibrated) Params, the simulated rover built from the nominal
+  // configuration: the simulator's unit must not follow the driver's calibration.
+  Session(const Params& rover_params, const Params& driver_params,
+          const sim::SimOptions& options);
 
   // One cycle with the operator's input (nullptr: none arrived this cycle).
   const CycleRecord& step(const driver::OperatorInput* input = nullptr);

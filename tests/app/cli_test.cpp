@@ -101,6 +101,94 @@ TEST(Cli, HelpListsTheCommands) {
   const Result r = cli({"--help"});
   EXPECT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("decode"), std::string::npos);
+  EXPECT_NE(r.out.find("calibrate"), std::string::npos);
+}
+
+// A temporary folder of its own per test.
+class CliCalibrate : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("marsokhod-cli-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string path(const char* name) const { return (dir_ / name).string(); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(CliCalibrate, BadArgumentsAreOneLineUsageErrors) {
+  Result r = cli({"--config", kConfig.c_str(), "calibrate", "voltmeter", "--sim"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no procedure 'voltmeter'; one of "), std::string::npos) << r.err;
+  r = cli({"--config", kConfig.c_str(), "calibrate", "voltage"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--sim (the simulated rover) or --can URL"), std::string::npos) << r.err;
+  r = cli({"--config", kConfig.c_str(), "calibrate", "voltage", "--sim", "--can", "socketcan:can0"});
+  EXPECT_EQ(r.status, 2);
+  r = cli({"--config", kConfig.c_str(), "calibrate", "voltage", "--can", "tcp://rover"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("marsokhod calibrate voltage: "), std::string::npos) << r.err;
+  r = cli({"--config", kConfig.c_str(), "calibrate", "voltage", "--sim", "--icr", "9"});
+  EXPECT_EQ(r.status, 2);
+  r = cli({"--config", kConfig.c_str(), "--calibration", "/nonexistent.toml", "run"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("/nonexistent.toml"), std::string::npos) << r.err;
+}
+
+TEST_F(CliCalibrate, WritesTheFileRefusesToOverwriteItAndTheDriverLoadsIt) {
+  const std::string file = path("rover.toml");
+  const std::string plots = path("plots");
+  Result r = cli({"--config", kConfig.c_str(), "calibrate", "voltage", "--sim", "--seed", "3",
+                  "--out", file.c_str(), "--plot", plots.c_str()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("Procedure 3.5 on simulator (seed 3, tether)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("supply_v_per_count = "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rms_residual_v = "), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(file));
+  EXPECT_TRUE(std::filesystem::exists(path("plots/voltage.csv")));
+  const auto written = std::filesystem::last_write_time(file);
+
+  r = cli({"--config", kConfig.c_str(), "calibrate", "voltage", "--sim", "--seed", "4", "--out",
+           file.c_str()});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("exists; pass --force"), std::string::npos) << r.err;
+  EXPECT_EQ(std::filesystem::last_write_time(file), written);
+
+  // The driver reports the calibration it runs with.
+  r = cli({"--config", kConfig.c_str(), "--calibration", file.c_str(), "run", "--no-console",
+           "--quiet", "--duration", "0.1"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("calibration: " + file + " (voltage)"), std::string::npos) << r.out;
+  r = cli({"--config", kConfig.c_str(), "run", "--no-console", "--quiet", "--duration", "0.1"});
+  EXPECT_NE(r.out.find("calibration: none (nominal configuration)"), std::string::npos) << r.out;
+}
+
+TEST_F(CliCalibrate, ARecordingKeepsTheCalibrationAndReplaysBitForBit) {
+  // A calibration that changes what the driver sends: ζ of every motor 3 % up.
+  const std::string file = path("zeta.toml");
+  std::ofstream(file) << "[motors]\nscale = [1.02, 1.01, 1.0, 0.97, 1.0, 1.0, 1.01, 1.0]\n";
+  const std::string scenario = path("short.toml");
+  std::ofstream(scenario) << "name = \"short\"\ndescription = \"a short drive\"\n"
+                             "duration_s = 4.0\nseed = 2\n[terrain]\nkind = \"flat\"\n"
+                             "material = \"hard\"\n[[input]]\nt = 0.0\n"
+                             "targets = { v1 = 0.0 }\n[[input]]\nt = 2.0\n"
+                             "targets = { v1 = 1.0 }\n";
+  const std::string out = path("run");
+  Result r = cli({"--config", kConfig.c_str(), "--calibration", file.c_str(), "scenario",
+                  scenario.c_str(), "--out", out.c_str(), "--no-plots"});
+  ASSERT_NE(r.status, 2) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(path("run/calibration.toml")));
+  // Replay reads the recording's configuration and calibration, whatever the command line says.
+  r = cli({"--config", kConfig.c_str(), "replay", out.c_str()});
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("identical to the recording, bit for bit"), std::string::npos) << r.out;
+  // Without the calibration the driver would have sent other duty cycles.
+  std::filesystem::remove(path("run/calibration.toml"));
+  r = cli({"--config", kConfig.c_str(), "replay", out.c_str()});
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
 }
 
 }  // namespace

@@ -6,11 +6,16 @@
 namespace marsokhod::link {
 namespace {
 
-TEST(ServerMessages, HelloSaysWhoHoldsControl) {
+TEST(ServerMessages, HelloSaysWhoHoldsControlAndWhichCalibrationTheDriverLoaded) {
   EXPECT_EQ(hello_json(3, std::nullopt),
             nlohmann::json::parse(
-                R"({"type":"hello","protocol":1,"client_id":3,"controller":null,"read_only":true})"));
+                R"({"type":"hello","protocol":1,"client_id":3,"controller":null,"read_only":true,
+                    "calibration":{"file":null,"procedures":[]}})"));
   EXPECT_EQ(hello_json(3, 1)["controller"], 1);
+  const nlohmann::json calibrated =
+      hello_json(3, 1, CalibrationSource{"rover7.toml", {"voltage", "motor-scale"}});
+  EXPECT_EQ(calibrated["calibration"]["file"], "rover7.toml");
+  EXPECT_EQ(calibrated["calibration"]["procedures"], nlohmann::json({"voltage", "motor-scale"}));
 }
 
 TEST(ServerMessages, ControlTellsThePreviousControllerItLostControl) {

@@ -125,6 +125,7 @@ export class Link extends EventTarget {
       case 'hello':
         this.clientId = message.client_id;
         this.applyControl(message);
+        this.emit('hello', { calibration: message.calibration ?? null });
         break;
       case 'control':
         this.applyControl(message);

@@ -75,6 +75,12 @@ function showLinkState() {
 }
 
 link.addEventListener('state', showLinkState);
+link.addEventListener('hello', (e) => {
+  const c = e.detail.calibration;
+  $('calibration').textContent = c && c.file
+    ? `calibration: ${c.file} (${c.procedures.join(', ') || 'no procedures'})`
+    : 'calibration: none (nominal configuration)';
+});
 link.addEventListener('control', showLinkState);
 link.addEventListener('error', (e) => showError(e.detail.text));
 link.addEventListener('pong', (e) => { $('link-state').title = `round trip ${e.detail.rtt_ms.toFixed(0)} ms`; });

@@ -153,6 +153,8 @@ test('a second console is read-only until it takes control', async () => {
   await waitForLinkState(second, 'read-only', 5000);
   await waitForStatus(first, 'the rover stands still', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
   assert.match(await second.textContent('#link-state'), /client \d+ controls/);
+  // `marsokhod run` without --calibration: the driver runs on the configuration's values.
+  assert.equal(await second.textContent('#calibration'), 'calibration: none (nominal configuration)');
 
   // Its stick pushed, the read-only console sends nothing; a gamepad message sent anyway is refused.
   await setPad(second, { axes: STICK_UP });

@@ -1,0 +1,125 @@
+#include "app/calibrate_command.hpp"
+
+#include <iomanip>
+#include <istream>
+#include <ostream>
+
+#include "bus/transport.hpp"
+#include "calibration/calibration_file.hpp"
+#include "calibration/procedures.hpp"
+#include "sim/rover/simulated_rover.hpp"
+
+namespace marsokhod::app {
+namespace {
+
+constexpr int kRefused = 1;
+constexpr int kUsageError = 2;
+
+void list_procedures(std::ostream& out) {
+  for (const calibration::ProcedureInfo& p : calibration::procedures()) {
+    out << std::left << std::setw(15) << p.name << std::setw(16) << p.reference << p.summary
+        << (p.needs_bench ? "" : " (no rover needed)") << "\n";
+  }
+}
+
+std::string names() {
+  std::string all;
+  for (const calibration::ProcedureInfo& p : calibration::procedures()) {
+    all += (all.empty() ? "" : ", ") + p.name;
+  }
+  return all;
+}
+
+void print_result(const calibration::ProcedureResult& r, std::ostream& out) {
+  out << r.reference << " (" << r.procedure << "):\n";
+  std::ostringstream values;
+  values << r.values;
+  std::istringstream lines(values.str());
+  for (std::string line; std::getline(lines, line);) out << "  " << line << "\n";
+  for (const auto& [name, value] : r.quality) out << "  " << name << " = " << value << "\n";
+  for (const std::string& note : r.notes) out << "  note: " << note << "\n";
+}
+
+}  // namespace
+
+int run_calibrate_command(const CalibrateArgs& args, const LoadedConfig& config, std::istream& in,
+                          std::ostream& out, std::ostream& err) {
+  if (args.list) {
+    list_procedures(out);
+    return 0;
+  }
+  const calibration::ProcedureInfo* info = calibration::find_procedure(args.procedure);
+  if (info == nullptr) {
+    err << "marsokhod calibrate: no procedure '" << args.procedure << "'; one of " << names()
+        << "\n";
+    return kUsageError;
+  }
+  calibration::ProcedureOptions options;
+  options.duration_s = args.duration_s;
+  options.icr = args.icr;
+  if (!args.from.empty()) options.from = args.from;
+  std::unique_ptr<calibration::Bench> bench;
+  if (info->needs_bench) {
+    if (args.sim == !args.can.empty()) {
+      err << "marsokhod calibrate " << info->name
+          << ": say where the rover is: --sim (the simulated rover) or --can URL\n";
+      return kUsageError;
+    }
+    if (!args.from.empty()) {
+      err << "marsokhod calibrate " << info->name << ": --from is for voltage-drop only\n";
+      return kUsageError;
+    }
+  } else if (args.from.empty()) {
+    err << "marsokhod calibrate " << info->name
+        << ": --from DIR is required (a scenario's --out folder with telemetry.csv)\n";
+    return kUsageError;
+  }
+  std::string source = args.from.empty() ? "" : "recording " + args.from;
+  calibration::ProcedureResult result;
+  try {
+    if (info->needs_bench) {
+      if (args.sim) {
+        sim::SimOptions sim_options = calibration::sim_bench_options(args.seed);
+        if (info->on_battery) sim_options.supply = sim::SupplyKind::kBattery;
+        bench = std::make_unique<calibration::SimBench>(config.params, sim_options, config.nominal);
+      } else {
+        bench = std::make_unique<calibration::BusBench>(config.params,
+                                                        bus::open_transport(args.can), in, out);
+      }
+      source = bench->source();
+      out << "marsokhod calibrate " << info->name << ": " << info->reference << " on " << source
+          << "; " << describe_calibration(config.params) << "\n";
+    }
+    result = info->run(bench.get(), config.params, options);
+    if (bench) bench->stop();
+  } catch (const std::invalid_argument& e) {
+    err << "marsokhod calibrate " << info->name << ": " << e.what() << "\n";
+    return kUsageError;
+  } catch (const std::exception& e) {
+    err << "marsokhod calibrate " << info->name << ": " << e.what() << "\n";
+    return kUsageError;
+  }
+  print_result(result, out);
+  if (!args.plot.empty()) {
+    try {
+      if (const auto note = calibration::write_recordings(result.recordings, args.plot)) {
+        out << "  " << *note << "\n";
+      } else {
+        out << "  measured data and plots in " << args.plot << "\n";
+      }
+    } catch (const std::exception& e) {
+      err << "marsokhod calibrate " << info->name << ": " << e.what() << "\n";
+      return kUsageError;
+    }
+  }
+  try {
+    calibration::write_calibration(args.out, result, config.config_file, source, args.force);
+  } catch (const calibration::CalibrationRefused& e) {
+    err << "marsokhod " << e.what() << "\n";
+    return kRefused;
+  }
+  out << "wrote " << args.out << " (load it with --calibration " << args.out << ")\n";
+  return 0;
+}
+
+}  // namespace marsokhod::app

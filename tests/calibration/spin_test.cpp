@@ -1,0 +1,195 @@
+// Procedure 5.1 on the simulated bench. The simulator has no "true F": F̂(c) emerges from the
+// wheels' contact with the ground in MuJoCo, so these tests assert physical properties instead of
+// a value: the joints reach the axle distances asked for, the turning rate at the best instant
+// falls as c grows (Figure 5.2, right: "an increased axle distance lowers the turning rate"), the
+// instant the procedure picks from the gyro is the one of the simulator's true peak turning rate,
+// and the sweep is deterministic. The fitted line itself is tested on synthetic sweeps.
+//
+// A discrepancy with the thesis, stated rather than hidden: in the simulator the turning rate of
+// d(τ) peaks early in the sweep (τ ≈ 0.15–0.2), where the exterior wheels run at about the center
+// wheels' speed (F̂ ≈ 0.85–1.1), not at F̂ ≈ 2–3 as on Marsokhod (Figure 5.4). The procedure
+// refuses such a result (F̂ ≤ 1), and the test below expects that refusal on the simulator, so
+// that a change of the contact model that makes F̂ physical shows up here.
+//
+// The spin runs on the batteries: the laboratory supply's 6 A limit browns the onboard computer
+// out under six wheels spinning at d = 0.8.
+#include "calibration/spin.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "calibration/joints.hpp"
+#include "calibration/procedures.hpp"
+#include "config/calibration.hpp"
+#include "config/load_params.hpp"
+#include "core/mobility/lever_geometry.hpp"
+#include "sim/rover/simulated_rover.hpp"
+
+namespace marsokhod::calibration {
+namespace {
+
+const char* const kConfigFile = MARSOKHOD_SOURCE_DIR "/config/marsokhod.toml";
+Params config() { return config::load_params(kConfigFile); }
+
+std::string first(const std::vector<std::string>& problems) {
+  return problems.empty() ? "(no problem)" : problems.front();
+}
+
+bool contains(const std::vector<std::string>& problems, const std::string& text) {
+  for (const std::string& p : problems) {
+    if (p.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// A synthetic sweep: the turning rate peaks at τ = peak_tau, where the exterior wheels run
+// `ratio` times the center ones.
+SpinSweep synthetic_sweep(double c, double ratio, double peak_tau, std::size_t count = 640) {
+  SpinSweep sweep;
+  sweep.clearance_m = c;
+  for (std::size_t k = 0; k < count; ++k) {
+    SpinSample s;
+    s.tau = static_cast<double>(k) / static_cast<double>(count - 1);
+    s.time_s = 0.0156 * static_cast<double>(k);
+    s.turn_rate_radps = -1.0 + (s.tau - peak_tau) * (s.tau - peak_tau);
+    const double center = 1.0;
+    s.velocity_radps = {ratio, -ratio, center, -center, ratio, -ratio, 0.0, 0.0};
+    sweep.samples.push_back(s);
+  }
+  return sweep;
+}
+
+sim::SimOptions battery(std::uint64_t seed) {
+  sim::SimOptions options = sim_bench_options(seed);
+  options.supply = sim::SupplyKind::kBattery;
+  return options;
+}
+
+TEST(SpinCalibration, SweepsTheAxleDistancesAndTheTurningRateFallsWithC) {
+  const Params params = config();
+  SimBench bench(params, battery(6));
+  const ProcedureResult result = calibrate_spin(bench, {});
+  ASSERT_GE(result.recordings.size(), 2u);
+  const Recording& points = result.recordings[0];
+  ASSERT_EQ(points.rows.size(), spin_clearances_m().size());
+  for (std::size_t k = 0; k < points.rows.size(); ++k) {
+    // c from the joints' estimated positions: within the mover's 0.015 rad of the target angle.
+    EXPECT_NEAR(points.rows[k][0], spin_clearances_m()[k], 0.01);
+    EXPECT_GT(points.rows[k][4], 0.1) << "turning rate at c = " << points.rows[k][0];
+    if (k > 0) {
+      EXPECT_LT(points.rows[k][4], points.rows[k - 1][4]) << "c = " << points.rows[k][0];
+    }
+  }
+  // The simulator's discrepancy with Figure 5.4 (see the top of this file): refused, and why.
+  EXPECT_FALSE(result.accepted());
+  bool exterior_not_faster = false;
+  for (const std::string& p : result.problems) {
+    exterior_not_faster = exterior_not_faster || p.find("≤ 1") != std::string::npos;
+  }
+  EXPECT_TRUE(exterior_not_faster) << (result.problems.empty() ? "" : result.problems.front());
+  // The procedure left the joints contracted again.
+  const sim::GroundTruth truth = bench.rover().truth();
+  EXPECT_NEAR(truth.joint_angle_rad[kFrontJoint], params.joints.front_max_rad, 0.05);
+  EXPECT_NEAR(truth.joint_angle_rad[kRearJoint], params.joints.rear_min_rad, 0.05);
+}
+
+TEST(SpinCalibration, ThePeakFromTheGyroIsTheTruePeakAndTheSweepIsDeterministic) {
+  const Params params = config();
+  std::array<SpinPoint, 2> points;
+  for (SpinPoint& point : points) {
+    SimBench bench(params, battery(6));
+    bench.start(params.cycle.icr, params.cycle.con);
+    BenchSetup ground;
+    bench.arrange(ground);
+    std::vector<double> true_rate;
+    std::vector<double> time;
+    const SpinSweep sweep = run_spin_sweep(bench, 0.3867, 6.0, [&](const BenchSample& s) {
+      true_rate.push_back(std::abs(bench.rover().truth().yaw_rate_radps));
+      time.push_back(s.time_s);
+    });
+    std::vector<std::string> problems;
+    point = spin_point(sweep, SpinLimits{}, problems);
+    ASSERT_TRUE(problems.empty()) << first(problems);
+    // The simulator's true turning rate at the chosen instant (averaged over the same 0.5 s) is
+    // within 3 % of its best over the sweep.
+    const double chosen_s = time.back() - sweep.samples.back().time_s + point.time_s;
+    double best = 0.0, at_chosen = 0.0, nearest = 1e9;
+    for (std::size_t k = 0; k < time.size(); ++k) {
+      double sum = 0.0;
+      int n = 0;
+      for (std::size_t i = 0; i < time.size(); ++i) {
+        if (std::abs(time[i] - time[k]) <= 0.25) {
+          sum += true_rate[i];
+          ++n;
+        }
+      }
+      const double averaged = sum / n;
+      best = std::max(best, averaged);
+      if (std::abs(time[k] - chosen_s) < nearest) {
+        nearest = std::abs(time[k] - chosen_s);
+        at_chosen = averaged;
+      }
+    }
+    EXPECT_GT(at_chosen, 0.97 * best);
+  }
+  EXPECT_EQ(points[0].ratio, points[1].ratio);
+  EXPECT_EQ(points[0].tau, points[1].tau);
+}
+
+TEST(SpinCalibration, TheFitOfSyntheticSweepsIsTheirLine) {
+  std::vector<SpinSweep> sweeps;
+  for (double c : {0.4, 0.45, 0.5}) sweeps.push_back(synthetic_sweep(c, 5.3 * c + 0.04, 0.5));
+  const ProcedureResult result = fit_spin(sweeps);
+  ASSERT_TRUE(result.accepted()) << first(result.problems);
+  const Params fitted = config::apply_calibration_values(kConfigFile, result.values);
+  EXPECT_NEAR(fitted.spin.slope_per_m, 5.3, 1e-9);
+  EXPECT_NEAR(fitted.spin.offset, 0.04, 1e-9);
+}
+
+TEST(SpinCalibration, RefusesTooFewAxleDistancesAndShortSweeps) {
+  const ProcedureResult few =
+      fit_spin({synthetic_sweep(0.4, 2.2, 0.5), synthetic_sweep(0.5, 2.7, 0.5)});
+  EXPECT_TRUE(contains(few.problems, "only 2 axle distances")) << first(few.problems);
+  const ProcedureResult short_sweep = fit_spin({synthetic_sweep(0.4, 2.2, 0.5, 50),
+                                                synthetic_sweep(0.45, 2.4, 0.5),
+                                                synthetic_sweep(0.5, 2.7, 0.5)});
+  EXPECT_TRUE(contains(short_sweep.problems, "only 50 cycles")) << first(short_sweep.problems);
+  EXPECT_TRUE(short_sweep.values.empty());
+}
+
+TEST(SpinCalibration, RefusesAnUnbracketedPeakAndSlowExteriorWheels) {
+  const ProcedureResult edge = fit_spin({synthetic_sweep(0.4, 2.2, 1.2),
+                                         synthetic_sweep(0.45, 2.4, 0.5),
+                                         synthetic_sweep(0.5, 2.7, 0.5)});
+  EXPECT_TRUE(contains(edge.problems, "not bracketed")) << first(edge.problems);
+  const ProcedureResult slow = fit_spin({synthetic_sweep(0.4, 0.8, 0.5),
+                                         synthetic_sweep(0.45, 2.4, 0.5),
+                                         synthetic_sweep(0.5, 2.7, 0.5)});
+  EXPECT_TRUE(contains(slow.problems, "≤ 1")) << first(slow.problems);
+}
+
+TEST(SpinCalibration, RefusesScatteredPoints) {
+  const ProcedureResult result = fit_spin({synthetic_sweep(0.4, 2.2, 0.5),
+                                           synthetic_sweep(0.45, 3.4, 0.5),
+                                           synthetic_sweep(0.5, 2.7, 0.5)});
+  EXPECT_TRUE(contains(result.problems, "scatters about the line")) << first(result.problems);
+}
+
+TEST(SpinCalibration, TheJointAngleGivesTheAxleDistance) {
+  const GeometryParams geometry;
+  for (double c : spin_clearances_m()) {
+    EXPECT_NEAR(mobility::axle_clearance_m(bending_for_clearance(c, geometry), geometry), c, 1e-12);
+  }
+  EXPECT_THROW(bending_for_clearance(0.6, geometry), std::invalid_argument);
+  // Σ|d(τ)| = 3.2 for all τ: "an invariant level of energy".
+  for (double tau : {0.0, 0.3, 1.0}) {
+    double sum = 0.0;
+    for (double d : spin_duty(tau)) sum += std::abs(d);
+    EXPECT_NEAR(sum, 3.2, 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace marsokhod::calibration
