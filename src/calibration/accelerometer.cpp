@@ -1,7 +1,6 @@
 #include "calibration/accelerometer.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <optional>
 
@@ -12,12 +11,6 @@ namespace marsokhod::calibration {
 namespace {
 
 constexpr double kDefaultRestS = 3.0;  // per placement: "a few seconds of rest"
-
-std::string number(double value, int digits = 1) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", digits, value);
-  return text;
-}
 
 std::string placement_name(std::size_t axis, bool up) {
   return "x" + std::to_string(axis + 1) + (up ? " up" : " down");
@@ -93,8 +86,8 @@ ProcedureResult fit_accelerometer(const std::vector<AccelerometerPlacement>& pla
       const AxisReading r = axis_reading(p, axis);
       if (r.sd_counts > limits.max_rest_sd_counts) {
         result.problems.push_back(name + ": acc" + std::to_string(axis + 1) + " wanders by " +
-                                  number(r.sd_counts) + " counts (σ; at most " +
-                                  number(limits.max_rest_sd_counts) +
+                                  fixed(r.sd_counts, 1) + " counts (σ; at most " +
+                                  fixed(limits.max_rest_sd_counts, 1) +
                                   "): the rover is not at rest");
       }
     }
@@ -126,9 +119,9 @@ ProcedureResult fit_accelerometer(const std::vector<AccelerometerPlacement>& pla
     result.quality[acc + "_span_counts"] = span;
     if (!(ratio >= limits.min_span_ratio && ratio <= limits.max_span_ratio)) {
       result.problems.push_back(
-          acc + ": up and down differ by " + number(span) + " counts, the configured table by " +
-          number(nominal_span) + " (allowed " + number(limits.min_span_ratio, 2) + "–" +
-          number(limits.max_span_ratio, 2) +
+          acc + ": up and down differ by " + fixed(span, 1) + " counts, the configured table by " +
+          fixed(nominal_span, 1) + " (allowed " + fixed(limits.min_span_ratio, 2) + "–" +
+          fixed(limits.max_span_ratio, 2) +
           " times that, same sign): a placement was wrong or the axis does not respond");
     }
   }
@@ -145,9 +138,9 @@ ProcedureResult fit_accelerometer(const std::vector<AccelerometerPlacement>& pla
       worst_cross = std::max(worst_cross, off);
       if (off > limits.max_cross_axis_fraction) {
         result.problems.push_back(placement_name(p.axis, p.axis_up) + ": acc" +
-                                  std::to_string(axis + 1) + " is " + number(off * 100.0, 0) +
+                                  std::to_string(axis + 1) + " is " + fixed(off * 100.0, 0) +
                                   " % of its span away from level (at most " +
-                                  number(limits.max_cross_axis_fraction * 100.0, 0) +
+                                  fixed(limits.max_cross_axis_fraction * 100.0, 0) +
                                   " %): the rover was not turned as asked");
       }
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "calibration/procedure.hpp"
 #include "core/protocol/codec.hpp"
 #include "driver/duty_rules.hpp"
 
@@ -153,6 +154,17 @@ void Bench::stop() {
     still_cycles = all_zero && still ? still_cycles + 1 : 0;
     if (still_cycles >= 4) return;
   }
+}
+
+BenchSetup stand_at_nominal_supply(const Params& params, std::string_view then) {
+  BenchSetup setup;
+  setup.placement = BenchSetup::Placement::kStand;
+  setup.supply_v = params.motors.nominal_supply_v;
+  setup.instruction =
+      "Put the rover on the stand so that all six wheels turn freely, and power it from the "
+      "laboratory supply set to " + fixed(params.motors.nominal_supply_v, 1) + " V" +
+      std::string(then);
+  return setup;
 }
 
 }  // namespace marsokhod::calibration

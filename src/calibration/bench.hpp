@@ -18,6 +18,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/params.hpp"
@@ -75,6 +76,11 @@ struct BenchSetup {
   // What the operator of a real rover must do to get here ("Put the rover on its left side…").
   std::string instruction;
 };
+
+// The stand with all six wheels free, powered from the laboratory supply set to Ū (the motor
+// procedures of chapter 4). The instruction says so and goes on with `then`: the rest of the
+// sentence and what the wheels will do (" (Procedure 4.4). The wheels will speed up …").
+BenchSetup stand_at_nominal_supply(const Params& params, std::string_view then);
 
 class Bench {
  public:

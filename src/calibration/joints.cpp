@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "calibration/fit.hpp"
@@ -18,12 +17,6 @@ constexpr double kReversalDuty = 0.1;  // Procedure 4.1: d = ±0.1
 constexpr double kHoldS = 2.5;         // the rear gap (≈ 0.25 rad) at ≈ 0.2 rad/s, then rest
 constexpr double kRestWindowS = 0.25;  // the end of a hold that is averaged
 constexpr std::size_t kDefaultReversals = 6;
-
-std::string number(double value, int digits = 4) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", digits, value);
-  return text;
-}
 
 JointHold hold_joints_end(const std::vector<BenchSample>& samples, std::size_t motor, double duty,
                           double window_s) {
@@ -67,9 +60,9 @@ ProcedureResult fit_joints(const std::array<std::vector<JointHold>, 2>& holds,
       const JointHold& h = holds[j][k];
       if (h.rest_speed_radps > limits.max_rest_speed_radps) {
         result.problems.push_back(
-            name + " joint: the shaft still turned at " + number(h.rest_speed_radps, 3) +
+            name + " joint: the shaft still turned at " + fixed(h.rest_speed_radps, 3) +
             " rad/s at the end of hold " + std::to_string(k + 1) + " (at most " +
-            number(limits.max_rest_speed_radps, 3) +
+            fixed(limits.max_rest_speed_radps, 3) +
             "): the joint moved; strap the rover down so that the joints cannot incline");
         continue;
       }
@@ -92,14 +85,14 @@ ProcedureResult fit_joints(const std::array<std::vector<JointHold>, 2>& holds,
     result.quality[name + "_backlash_sd_rad"] = spread;
     const double allowed = limits.max_spread_fraction * b + limits.max_spread_floor_rad;
     if (spread > allowed) {
-      result.problems.push_back(name + " joint: the reversals disagree (σ " + number(spread) +
-                                " rad of " + number(b) + " rad; at most " + number(allowed) +
+      result.problems.push_back(name + " joint: the reversals disagree (σ " + fixed(spread, 4) +
+                                " rad of " + fixed(b, 4) + " rad; at most " + fixed(allowed, 4) +
                                 "): the joint is not held firmly or the shaft slips");
     }
     if (b < limits.min_backlash_rad || b > limits.max_backlash_rad) {
-      result.problems.push_back(name + " joint: a backlash of " + number(b) +
-                                " rad is not plausible (" + number(limits.min_backlash_rad, 3) +
-                                "–" + number(limits.max_backlash_rad, 3) +
+      result.problems.push_back(name + " joint: a backlash of " + fixed(b, 4) +
+                                " rad is not plausible (" + fixed(limits.min_backlash_rad, 3) +
+                                "–" + fixed(limits.max_backlash_rad, 3) +
                                 " rad): the joint moved with the shaft or is disconnected");
     }
     backlash[motor] = b;

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 
 #include "calibration/procedures.hpp"
@@ -19,13 +18,6 @@ namespace {
 
 constexpr double kPeakTorqueNm = 5.51;  // Procedure 4.13's weight
 constexpr double kMaxDuty = 0.6;
-
-std::string fmt(double value, int precision = 3) {
-  std::ostringstream out;
-  out.precision(precision);
-  out << std::fixed << value;
-  return out.str();
-}
 
 // [1, d, d²] then the load's columns.
 std::vector<double> row_of(double duty, std::initializer_list<double> load_columns) {
@@ -83,9 +75,10 @@ LoadFit fit_load(const std::vector<LoadSample>& samples, const LoadFitSettings& 
   fit.samples = used.size();
   fit.revolutions = used.empty() ? 0.0 : (max_p - min_p) / (2.0 * std::numbers::pi);
   if (fit.revolutions < settings.min_revolutions) {
-    fit.problems.push_back("the wheel turned " + fmt(fit.revolutions, 1) + " revolutions at d ∈ [" +
-                           fmt(settings.min_duty, 2) + ", " + fmt(settings.max_duty, 2) +
-                           "], need " + fmt(settings.min_revolutions, 1) +
+    fit.problems.push_back("the wheel turned " + fixed(fit.revolutions, 1) +
+                           " revolutions at d ∈ [" + fixed(settings.min_duty, 2) + ", " +
+                           fixed(settings.max_duty, 2) +
+                           "], need " + fixed(settings.min_revolutions, 1) +
                            ": the sweep is too short (--duration) or the wheel is blocked");
     return fit;
   }
@@ -134,20 +127,20 @@ LoadFit fit_load(const std::vector<LoadSample>& samples, const LoadFitSettings& 
   }
 
   if (fit.residuals.rms > settings.max_residual_radps) {
-    fit.problems.push_back("l scatters by " + fmt(fit.residuals.rms) + " rad/s (rms) about τ·B±, "
-                           "more than " + fmt(settings.max_residual_radps) +
+    fit.problems.push_back("l scatters by " + fixed(fit.residuals.rms) + " rad/s (rms) about τ·B±, "
+                           "more than " + fixed(settings.max_residual_radps) +
                            " rad/s: the data is too noisy (a loose weight? the wheel touching "
                            "something?)");
   }
   if (fit.amplitude_radps < settings.min_signal_to_noise * fit.residuals.rms) {
-    fit.problems.push_back("the periodic load (" + fmt(fit.amplitude_radps) +
-                           " rad/s) hardly stands out of the noise (" + fmt(fit.residuals.rms) +
+    fit.problems.push_back("the periodic load (" + fixed(fit.amplitude_radps) +
+                           " rad/s) hardly stands out of the noise (" + fixed(fit.residuals.rms) +
                            " rad/s rms): is the weight strapped to the wheel? the data is too "
                            "noisy");
   }
   if (!(fit.same_sign_radps_per_nm > 0.0) || !(fit.opposite_sign_radps_per_nm > 0.0)) {
-    fit.problems.push_back("B⁺ = " + fmt(fit.same_sign_radps_per_nm, 4) + ", B⁻ = " +
-                           fmt(fit.opposite_sign_radps_per_nm, 4) +
+    fit.problems.push_back("B⁺ = " + fixed(fit.same_sign_radps_per_nm, 4) + ", B⁻ = " +
+                           fixed(fit.opposite_sign_radps_per_nm, 4) +
                            " rad/(s·N·m): both must be positive");
   }
   return fit;
@@ -158,29 +151,20 @@ ProcedureResult calibrate_load(Bench& bench, const ProcedureOptions& options) {
   ProcedureResult result;
   result.procedure = "load";
   result.reference = "Procedure 4.13";
-  const double duration_s = options.duration_s.value_or(90.0);
-  if (!(duration_s > 0.0)) throw std::invalid_argument("load: --duration must be > 0 s");
+  const double duration_s = duration_of(options, 90.0, result.procedure);
   const int icr = options.icr.value_or(params.cycle.icr);
-  if (!options.motors.empty()) {
-    result.notes.push_back("load measures the front-left wheel (Procedure 4.13); --motors is "
-                           "ignored");
-  }
+  note_motors_ignored(options, "the front-left wheel (Procedure 4.13)", result);
   const std::size_t wheel = kFrontLeft;
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(params.motor_curves, icr));
   const double nominal_v = params.motors.nominal_supply_v;
   const double zeta = params.motors.scale[wheel];
 
-  BenchSetup setup;
-  setup.placement = BenchSetup::Placement::kStand;
-  setup.supply_v = nominal_v;
+  BenchSetup setup = stand_at_nominal_supply(
+      params, ", and strap the metallic weight tightly to the rim of the front-left wheel "
+              "(Procedure 4.13, Figure 4.7: peak torque " + fixed(kPeakTorqueNm, 2) +
+                  " N·m). The wheel will turn slowly faster for " + fixed(duration_s, 0) + " s.");
   setup.weight_wheel = wheel;
   setup.weight_peak_torque_nm = kPeakTorqueNm;
-  setup.instruction =
-      "Put the rover on the stand so that all six wheels turn freely, power it from the "
-      "laboratory supply set to " + fmt(nominal_v, 1) +
-      " V, and strap the metallic weight tightly to the rim of the front-left wheel (Procedure "
-      "4.13, Figure 4.7: peak torque " + fmt(kPeakTorqueNm, 2) +
-      " N·m). The wheel will turn slowly faster for " + fmt(duration_s, 0) + " s.";
   bench.arrange(setup);
   bench.start(icr, params.cycle.con);
   const double h = bench.period_s();
@@ -236,7 +220,7 @@ ProcedureResult calibrate_load(Bench& bench, const ProcedureOptions& options) {
   result.quality["samples"] = static_cast<double>(fit.samples);
   result.quality["peak_torque_nm"] = kPeakTorqueNm;
   result.notes.push_back("B± at icr = " + std::to_string(icr) + " from d ∈ [" +
-                         fmt(settings.min_duty, 1) + ", " + fmt(settings.max_duty, 1) +
+                         fixed(settings.min_duty, 1) + ", " + fixed(settings.max_duty, 1) +
                          "] (4.7)'s constants; per-duty values in the load_gains recording");
   if (icr != params.cycle.icr) {
     result.notes.push_back("icr " + std::to_string(icr) + " is not the configured " +

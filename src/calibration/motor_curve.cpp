@@ -12,13 +12,6 @@
 namespace marsokhod::calibration {
 namespace {
 
-std::string fmt(double value, int precision = 3) {
-  std::ostringstream out;
-  out.precision(precision);
-  out << std::fixed << value;
-  return out.str();
-}
-
 void check_settings(const std::vector<MotorCurveSample>& samples,
                     const MotorCurveFitSettings& settings) {
   const std::vector<double>& grid = settings.duty_grid;
@@ -100,9 +93,9 @@ MotorCurveFit fit_motor_curve(const std::vector<MotorCurveSample>& samples,
   const auto [min_u, max_u] = std::minmax_element(supply.begin(), supply.end());
   if (std::abs(*min_u - settings.nominal_supply_v) > settings.max_supply_deviation_v ||
       std::abs(*max_u - settings.nominal_supply_v) > settings.max_supply_deviation_v) {
-    fit.problems.push_back("the supply ranged over " + fmt(*min_u, 2) + " … " + fmt(*max_u, 2) +
-                           " V, more than " + fmt(settings.max_supply_deviation_v, 1) +
-                           " V from Ū = " + fmt(settings.nominal_supply_v, 1) +
+    fit.problems.push_back("the supply ranged over " + fixed(*min_u, 2) + " … " + fixed(*max_u, 2) +
+                           " V, more than " + fixed(settings.max_supply_deviation_v, 1) +
+                           " V from Ū = " + fixed(settings.nominal_supply_v, 1) +
                            " V: set the laboratory supply to Ū (the normalisation by Ū/U holds "
                            "only near it)");
   }
@@ -119,7 +112,7 @@ MotorCurveFit fit_motor_curve(const std::vector<MotorCurveSample>& samples,
       const WindowFit down = fit_window(samples, w, duty, false, settings);
       if (!up.ok || !down.ok) {
         if (w == 0) {
-          thin.push_back("d = " + fmt(duty, 2) + " (" + std::to_string(up.count) + " up, " +
+          thin.push_back("d = " + fixed(duty, 2) + " (" + std::to_string(up.count) + " up, " +
                          std::to_string(down.count) + " down)");
         }
         continue;
@@ -137,7 +130,7 @@ MotorCurveFit fit_motor_curve(const std::vector<MotorCurveSample>& samples,
     for (const std::string& t : thin) list += (list.empty() ? "" : ", ") + t;
     fit.problems.push_back("too few samples near " + list + " (need " +
                            std::to_string(settings.min_window_samples) +
-                           " each way within ±" + fmt(settings.window_duty, 2) +
+                           " each way within ±" + fixed(settings.window_duty, 2) +
                            "): the sweep is too short or does not cover 0 … 1");
     return fit;
   }
@@ -163,16 +156,16 @@ MotorCurveFit fit_motor_curve(const std::vector<MotorCurveSample>& samples,
   }
 
   if (fit.rms_residual_radps > settings.max_residual_radps) {
-    fit.problems.push_back("the measured speed scatters by " + fmt(fit.rms_residual_radps) +
+    fit.problems.push_back("the measured speed scatters by " + fixed(fit.rms_residual_radps) +
                            " rad/s (rms) about the local lines, more than " +
-                           fmt(settings.max_residual_radps) +
+                           fixed(settings.max_residual_radps) +
                            " rad/s: the data is too noisy (encoder connections? a wheel touching "
                            "something?)");
   }
   if (fit.max_hysteresis_radps > settings.max_hysteresis_radps) {
     fit.problems.push_back("the sweeps up and down differ by up to " +
-                           fmt(fit.max_hysteresis_radps) + " rad/s (limit " +
-                           fmt(settings.max_hysteresis_radps) +
+                           fixed(fit.max_hysteresis_radps) + " rad/s (limit " +
+                           fixed(settings.max_hysteresis_radps) +
                            "): the sweep is too fast for the motor's response; sweep more slowly "
                            "(a longer --duration)");
   }
@@ -185,16 +178,16 @@ MotorCurveFit fit_motor_curve(const std::vector<MotorCurveSample>& samples,
     });
     if (in_dead_zone && all_below) {
       const double floor = 1e-3 * static_cast<double>(g);
-      fit.notes.push_back("W(" + fmt(settings.duty_grid[g], 2) + ") = " + fmt(speed[g], 4) +
-                          " rad/s lies in the dead zone; tabulated as " + fmt(floor, 3) +
+      fit.notes.push_back("W(" + fixed(settings.duty_grid[g], 2) + ") = " + fixed(speed[g], 4) +
+                          " rad/s lies in the dead zone; tabulated as " + fixed(floor, 3) +
                           " rad/s to keep W invertible");
       speed[g] = floor;
       continue;
     }
     if (!(speed[g] > speed[g - 1])) {
-      fit.problems.push_back("W is not increasing: W(" + fmt(settings.duty_grid[g], 2) + ") = " +
-                             fmt(speed[g]) + " rad/s ≤ W(" + fmt(settings.duty_grid[g - 1], 2) +
-                             ") = " + fmt(speed[g - 1]) +
+      fit.problems.push_back("W is not increasing: W(" + fixed(settings.duty_grid[g], 2) + ") = " +
+                             fixed(speed[g]) + " rad/s ≤ W(" + fixed(settings.duty_grid[g - 1], 2) +
+                             ") = " + fixed(speed[g - 1]) +
                              " rad/s (a wheel blocked or slipping, or noisy data)");
     }
   }
@@ -208,27 +201,11 @@ ProcedureResult calibrate_motor_curve(Bench& bench, const ProcedureOptions& opti
   result.reference = "Procedure 4.4";
 
   const int icr = options.icr.value_or(params.cycle.icr);
-  const double duration_s = options.duration_s.value_or(120.0);
-  if (!(duration_s > 0.0)) throw std::invalid_argument("motor-curve: --duration must be > 0 s");
-  std::vector<std::size_t> wheels = options.motors;
-  if (wheels.empty()) {
-    for (std::size_t w = 0; w < kWheelCount; ++w) wheels.push_back(w);
-  }
-  for (const std::size_t w : wheels) {
-    if (w >= kWheelCount) {
-      throw std::invalid_argument("motor-curve: motor " + std::to_string(w) +
-                                  " is not a wheel (0 … 5); the joints cannot turn freely");
-    }
-  }
+  const double duration_s = duration_of(options, 120.0, result.procedure);
+  const std::vector<std::size_t> wheels = wheels_of(options, result.procedure);
 
-  BenchSetup setup;
-  setup.placement = BenchSetup::Placement::kStand;
-  setup.supply_v = params.motors.nominal_supply_v;
-  setup.instruction =
-      "Put the rover on the stand so that all six wheels turn freely, and power it from the "
-      "laboratory supply set to " + fmt(params.motors.nominal_supply_v, 1) +
-      " V (Procedure 4.4). The wheels will speed up slowly to full speed and back.";
-  bench.arrange(setup);
+  bench.arrange(stand_at_nominal_supply(
+      params, " (Procedure 4.4). The wheels will speed up slowly to full speed and back."));
   bench.start(icr, params.cycle.con);
 
   // Up over ~45 %, hold d = 1 for 1.5 s (the first 0.5 s settle), down over ~45 %.

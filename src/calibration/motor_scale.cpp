@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "calibration/fit.hpp"
@@ -14,13 +13,6 @@ namespace marsokhod::calibration {
 namespace {
 
 constexpr double kScaleDuty = 0.7;  // Procedure 4.5
-
-std::string fmt(double value, int precision = 3) {
-  std::ostringstream out;
-  out.precision(precision);
-  out << std::fixed << value;
-  return out.str();
-}
 
 }  // namespace
 
@@ -42,9 +34,9 @@ MotorScaleFit fit_motor_scale(const std::vector<MotorScaleSample>& samples,
   fit.samples = kept.size();
   fit.duration_s = kept.size() < 2 ? 0.0 : kept.back()->time_s - kept.front()->time_s;
   if (kept.size() < 2 || fit.duration_s < settings.min_duration_s) {
-    fit.problems.push_back("the run is too short: " + fmt(fit.duration_s, 1) +
-                           " s at d = 0.7 after the first " + fmt(settings.settle_s, 1) +
-                           " s, need at least " + fmt(settings.min_duration_s, 1) +
+    fit.problems.push_back("the run is too short: " + fixed(fit.duration_s, 1) +
+                           " s at d = 0.7 after the first " + fixed(settings.settle_s, 1) +
+                           " s, need at least " + fixed(settings.min_duration_s, 1) +
                            " s (--duration; the thesis ran 30 min)");
     return fit;
   }
@@ -59,9 +51,9 @@ MotorScaleFit fit_motor_scale(const std::vector<MotorScaleSample>& samples,
   if (!(*min_u > 0.0) ||
       std::max(std::abs(*min_u - settings.nominal_supply_v),
                std::abs(*max_u - settings.nominal_supply_v)) > settings.max_supply_deviation_v) {
-    fit.problems.push_back("the supply ranged over " + fmt(*min_u, 2) + " … " + fmt(*max_u, 2) +
-                           " V, more than " + fmt(settings.max_supply_deviation_v, 1) +
-                           " V from Ū = " + fmt(settings.nominal_supply_v, 1) +
+    fit.problems.push_back("the supply ranged over " + fixed(*min_u, 2) + " … " + fixed(*max_u, 2) +
+                           " V, more than " + fixed(settings.max_supply_deviation_v, 1) +
+                           " V from Ū = " + fixed(settings.nominal_supply_v, 1) +
                            " V: set the laboratory supply to Ū");
     return fit;
   }
@@ -76,7 +68,7 @@ MotorScaleFit fit_motor_scale(const std::vector<MotorScaleSample>& samples,
     fit.scale[i] = zeta;
     if (!(zeta > 0.0)) {
       fit.problems.push_back(std::string("wheel ") + kMotorNames[i] + " turned at " +
-                             fmt(zeta * settings.curve_speed_radps) +
+                             fixed(zeta * settings.curve_speed_radps) +
                              " rad/s on average: it must turn forward at d = 0.7 (blocked? "
                              "wired backwards?)");
       continue;
@@ -89,8 +81,8 @@ MotorScaleFit fit_motor_scale(const std::vector<MotorScaleSample>& samples,
     }
     if (fit.relative_scatter[i] > settings.max_relative_scatter) {
       fit.problems.push_back(std::string("wheel ") + kMotorNames[i] + "'s speed scatters by " +
-                             fmt(100.0 * fit.relative_scatter[i], 2) + " % (σ), more than " +
-                             fmt(100.0 * settings.max_relative_scatter, 2) +
+                             fixed(100.0 * fit.relative_scatter[i], 2) + " % (σ), more than " +
+                             fixed(100.0 * settings.max_relative_scatter, 2) +
                              " %: the data is too noisy (encoder connection? the wheel touching "
                              "something?)");
     }
@@ -105,23 +97,15 @@ ProcedureResult calibrate_motor_scale(Bench& bench, const ProcedureOptions& opti
   ProcedureResult result;
   result.procedure = "motor-scale";
   result.reference = "Procedure 4.5";
-  const double duration_s = options.duration_s.value_or(120.0);
-  if (!(duration_s > 0.0)) throw std::invalid_argument("motor-scale: --duration must be > 0 s");
+  const double duration_s = duration_of(options, 120.0, result.procedure);
   const int icr = options.icr.value_or(params.cycle.icr);
-  if (!options.motors.empty()) {
-    result.notes.push_back("motor-scale measures all six wheels; --motors is ignored");
-  }
+  note_motors_ignored(options, "all six wheels", result);
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(params.motor_curves, icr));
   const double curve_speed = curve.velocity_radps(kScaleDuty);
 
-  BenchSetup setup;
-  setup.placement = BenchSetup::Placement::kStand;
-  setup.supply_v = params.motors.nominal_supply_v;
-  setup.instruction =
-      "Put the rover on the stand so that all six wheels turn freely, and power it from the "
-      "laboratory supply set to " + fmt(params.motors.nominal_supply_v, 1) +
-      " V (Procedure 4.5). The wheels will turn at d = 0.7 for " + fmt(duration_s, 0) + " s.";
-  bench.arrange(setup);
+  bench.arrange(stand_at_nominal_supply(
+      params, " (Procedure 4.5). The wheels will turn at d = 0.7 for " + fixed(duration_s, 0) +
+                  " s."));
   bench.start(icr, params.cycle.con);
 
   MotorVector wanted{};
@@ -163,7 +147,7 @@ ProcedureResult calibrate_motor_scale(Bench& bench, const ProcedureOptions& opti
   result.quality["mean_supply_v"] = fit.mean_supply_v;
   result.quality["curve_speed_radps"] = curve_speed;
   result.notes.push_back("ζ_i is relative to the configured W_" + std::to_string(icr) +
-                         "(0.7) = " + fmt(curve_speed) +
+                         "(0.7) = " + fixed(curve_speed) +
                          " rad/s; ζ6 = ζ1 and ζ7 = ζ4 (shared power cables)");
 
   // Figure 4.3: the wheels' speeds normalised by Ū/U over the run.

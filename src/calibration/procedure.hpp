@@ -6,11 +6,13 @@
 #include <toml++/toml.h>
 
 #include <filesystem>
+#include <cstddef>
 #include <functional>
 #include <iosfwd>
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/params.hpp"
@@ -58,5 +60,22 @@ struct ProcedureOptions {
 // the folder cannot be written.
 std::optional<std::string> write_recordings(const std::vector<Recording>& recordings,
                                             const std::filesystem::path& dir);
+
+// --duration, or `default_s` when not given. Throws std::invalid_argument naming the procedure
+// when it is not positive.
+double duration_of(const ProcedureOptions& options, double default_s, std::string_view procedure);
+
+// The wheels a procedure on the stand drives: --motors, or all six when none are given. Throws
+// std::invalid_argument naming the procedure ("motor-curve") when a motor is not a wheel: the
+// joints cannot turn freely on the stand.
+std::vector<std::size_t> wheels_of(const ProcedureOptions& options, std::string_view procedure);
+
+// For a procedure that always measures the same motors (`measured`: "all six wheels"): when
+// --motors was given, a note in `result` that it is ignored.
+void note_motors_ignored(const ProcedureOptions& options, std::string_view measured,
+                         ProcedureResult& result);
+
+// `value` in fixed notation with `digits` digits after the point: fixed(24.0, 1) = "24.0".
+std::string fixed(double value, int digits = 3);
 
 }  // namespace marsokhod::calibration

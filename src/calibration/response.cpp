@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 
 #include "calibration/procedures.hpp"
@@ -15,13 +14,6 @@
 
 namespace marsokhod::calibration {
 namespace {
-
-std::string fmt(double value, int precision = 3) {
-  std::ostringstream out;
-  out.precision(precision);
-  out << std::fixed << value;
-  return out.str();
-}
 
 // The diagonal of (AᵀA)⁻¹ by Gauss–Jordan on the small normal matrix; empty when singular.
 std::vector<double> inverse_diagonal(std::vector<std::vector<double>> m) {
@@ -122,7 +114,7 @@ std::vector<double> predict_response(const std::vector<double>& delta,
   for (std::ptrdiff_t m = 0; m < n; ++m) {
     double sum = 0.0;
     for (std::size_t j = 0; j < delta.size(); ++j) {
-      const std::ptrdiff_t k = m + 1 - static_cast<std::ptrdiff_t>(j);
+      const std::ptrdiff_t k = m - static_cast<std::ptrdiff_t>(j);
       double w_hat = 0.0;
       if (k < 0) {
         w_hat = commanded_radps.front();
@@ -152,19 +144,19 @@ ResponseFit fit_response(const std::vector<ResponseSeries>& wheels,
   for (const ResponseSeries& s : wheels) shortest = std::min(shortest, s.measured_radps.size());
   fit.duration_s = static_cast<double>(shortest) * settings.period_s;
   if (wheels.empty() || fit.duration_s < settings.min_duration_s) {
-    fit.problems.push_back("the chirp is too short: " + fmt(fit.duration_s, 1) +
-                           " s, need at least " + fmt(settings.min_duration_s, 1) +
+    fit.problems.push_back("the chirp is too short: " + fixed(fit.duration_s, 1) +
+                           " s, need at least " + fixed(settings.min_duration_s, 1) +
                            " s (--duration; the thesis ran 2 min)");
     return fit;
   }
 
-  // Rows: [ŵ_m, ŵ_(m−1), …, ŵ_(m+1−N)] → v_m, for m ≥ N − 1 of every wheel.
+  // Rows: [ŵ_(m−1), …, ŵ_(m−N)] → v_m, for m ≥ N of every wheel.
   std::vector<std::vector<double>> rows;
   std::vector<double> y;
   for (const ResponseSeries& s : wheels) {
-    for (std::size_t m = n - 1; m < s.measured_radps.size(); ++m) {
+    for (std::size_t m = n; m < s.measured_radps.size(); ++m) {
       std::vector<double> row(n);
-      for (std::size_t j = 1; j <= n; ++j) row[j - 1] = s.commanded_radps[m + 1 - j];
+      for (std::size_t j = 1; j <= n; ++j) row[j - 1] = s.commanded_radps[m - j];
       rows.push_back(std::move(row));
       y.push_back(s.measured_radps[m]);
     }
@@ -191,7 +183,8 @@ ResponseFit fit_response(const std::vector<ResponseSeries>& wheels,
     if (!(fit.excitation >= settings.min_excitation)) {
       fit.problems.push_back("the command covers too few frequencies to tell " +
                              std::to_string(n) + " lags apart (excitation " +
-                             fmt(fit.excitation, 6) + ", need " + fmt(settings.min_excitation, 6) +
+                             fixed(fit.excitation, 6) + ", need " +
+                             fixed(settings.min_excitation, 6) +
                              "): assign a chirp rising to near 1/(2h)");
     }
   }
@@ -242,14 +235,14 @@ ResponseFit fit_response(const std::vector<ResponseSeries>& wheels,
     }
   }
   if (fit.residuals.rms > settings.max_residual_radps) {
-    fit.problems.push_back("w − ν scatters by " + fmt(fit.residuals.rms) +
-                           " rad/s (rms), more than " + fmt(settings.max_residual_radps) +
+    fit.problems.push_back("w − ν scatters by " + fixed(fit.residuals.rms) +
+                           " rad/s (rms), more than " + fixed(settings.max_residual_radps) +
                            " rad/s: the data is too noisy or the wheels are not free");
   }
   if (!(worst <= settings.max_standard_error)) {
-    fit.problems.push_back("δ^" + std::to_string(worst_j) + " = " + fmt(fit.delta[worst_j]) +
-                           " is uncertain by ±" + fmt(worst, 4) + " (limit ±" +
-                           fmt(settings.max_standard_error, 4) +
+    fit.problems.push_back("δ^" + std::to_string(worst_j) + " = " + fixed(fit.delta[worst_j]) +
+                           " is uncertain by ±" + fixed(worst, 4) + " (limit ±" +
+                           fixed(settings.max_standard_error, 4) +
                            "): the chirp is too short, covers too few frequencies, or the data "
                            "is too noisy");
   }
@@ -261,31 +254,15 @@ ProcedureResult calibrate_response(Bench& bench, const ProcedureOptions& options
   ProcedureResult result;
   result.procedure = "response";
   result.reference = "Procedure 4.8";
-  const double duration_s = options.duration_s.value_or(120.0);
-  if (!(duration_s > 0.0)) throw std::invalid_argument("response: --duration must be > 0 s");
+  const double duration_s = duration_of(options, 120.0, result.procedure);
   const int icr = options.icr.value_or(params.cycle.icr);
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(params.motor_curves, icr));
   const double nominal_v = params.motors.nominal_supply_v;
-  std::vector<std::size_t> wheels = options.motors;
-  if (wheels.empty()) {
-    for (std::size_t w = 0; w < kWheelCount; ++w) wheels.push_back(w);
-  }
-  for (const std::size_t w : wheels) {
-    if (w >= kWheelCount) {
-      throw std::invalid_argument("response: motor " + std::to_string(w) +
-                                  " is not a wheel (0 … 5); the joints cannot turn freely");
-    }
-  }
+  const std::vector<std::size_t> wheels = wheels_of(options, result.procedure);
 
-  BenchSetup setup;
-  setup.placement = BenchSetup::Placement::kStand;
-  setup.supply_v = nominal_v;
-  setup.instruction =
-      "Put the rover on the stand so that all six wheels turn freely, and power it from the "
-      "laboratory supply set to " + fmt(nominal_v, 1) +
-      " V (Procedure 4.8). The wheels will oscillate faster and faster for " +
-      fmt(duration_s, 0) + " s.";
-  bench.arrange(setup);
+  bench.arrange(stand_at_nominal_supply(
+      params, " (Procedure 4.8). The wheels will oscillate faster and faster for " +
+                  fixed(duration_s, 0) + " s."));
   bench.start(icr, params.cycle.con);
   const double h = bench.period_s();
 
@@ -382,7 +359,7 @@ ProcedureResult calibrate_response(Bench& bench, const ProcedureOptions& options
   result.quality["duration_s"] = fit.duration_s;
   result.quality["rows"] = static_cast<double>(fit.rows);
   result.quality["period_s"] = h;
-  result.notes.push_back("δ for h = " + fmt(h, 4) + " s, con = " + std::to_string(bench.con()) +
+  result.notes.push_back("δ for h = " + fixed(h, 4) + " s, con = " + std::to_string(bench.con()) +
                          "; ŵ used the configured ζ and W_" + std::to_string(icr) +
                          " (calibrate motor-curve and motor-scale first)");
 

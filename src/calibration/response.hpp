@@ -3,12 +3,13 @@
 // oscillates with rising frequency (Figure 4.4), and δ solves
 //   w^k = Σ_(j=1..N) δ^j ŵ^(k−j)
 // over every measured wheel and cycle. δ⁰ = 0: the command sent in cycle k cannot affect the
-// velocity the driver measures in cycle k (µi samples its registers when the request arrives),
-// and the driver needs ν^k before it chooses ŵ^k (no_load_estimator.hpp).
+// velocity µi samples when that very request arrives.
 //
-// Indexing. A Bench cycle m sends d_m and returns the responses to those very requests (v_m);
-// the driver receives them one cycle later, so its w^(m+1) = v_m and its ŵ^m is ŵ(d_m):
-//   v_m = Σ_(j=1..N) δ^j ŵ_(m+1−j)     (δ¹ weighs the command sent in the same bench cycle).
+// Indexing: the thesis'. A Bench cycle m sends d_m and returns v_m, µi's answer to that request,
+// sampled when it arrived — the thesis' w^m:
+//   v_m = Σ_(j=1..N) δ^j ŵ_(m−j)
+// so the table compares with the thesis' and with the configuration's. (The driver receives v_m
+// one cycle later and applies the table one cycle late: driver/motion_controller.cpp.)
 #pragma once
 
 #include <cstddef>
@@ -39,7 +40,7 @@ struct Chirp {
 // One wheel's run, per bench cycle m: ŵ_m = ζ·W(d_m)·U_m/Ū of the duty sent, and v_m.
 struct ResponseSeries {
   std::vector<double> commanded_radps;  // ŵ_m
-  std::vector<double> measured_radps;   // v_m (the driver's w^(m+1))
+  std::vector<double> measured_radps;   // v_m, sampled when request m arrived (the thesis' w^m)
 };
 
 struct ResponseFitSettings {
@@ -71,8 +72,7 @@ struct ResponseFit {
 ResponseFit fit_response(const std::vector<ResponseSeries>& wheels,
                          const ResponseFitSettings& settings);
 
-// ν aligned with v (bench order): ν_m = Σ_(j≥1) δ^j ŵ_(m+1−j), with ŵ before the start taken as
-// the first command. δ⁰ multiplies ŵ_(m+1), the next command (0 for the last cycle).
+// ν aligned with v: ν_m = Σ_j δ^j ŵ_(m−j), with ŵ before the start taken as the first command.
 std::vector<double> predict_response(const std::vector<double>& delta,
                                      const std::vector<double>& commanded_radps);
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -17,12 +16,6 @@ namespace {
 constexpr double kSpinDuty = 0.8;        // Procedure 5.1's factor
 constexpr double kDefaultRampS = 10.0;   // τ from 0 to 1 ("slowly")
 constexpr double kNullRestS = 1.0;       // the gyro's null rate, at rest before the spin
-
-std::string number(double value, int digits = 3) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", digits, value);
-  return text;
-}
 
 // Centered moving average over ±half samples.
 std::vector<double> smoothed(const std::vector<double>& values, std::size_t half) {
@@ -70,8 +63,8 @@ double bending_for_clearance(double clearance_m, const GeometryParams& geometry)
   const double cosine = (a * a + b * b - clearance_m * clearance_m) / (2.0 * a * b);
   if (!(std::abs(cosine) < 1.0)) {
     throw std::invalid_argument("no joint angle gives an axle distance of " +
-                                number(clearance_m) + " m (a = " + number(a) + ", b = " +
-                                number(b) + ")");
+                                fixed(clearance_m) + " m (a = " + fixed(a) + ", b = " +
+                                fixed(b) + ")");
   }
   return std::acos(cosine);
 }
@@ -86,7 +79,7 @@ SpinPoint spin_point(const SpinSweep& sweep, const SpinLimits& limits,
                      std::vector<std::string>& problems) {
   SpinPoint point;
   point.clearance_m = sweep.clearance_m;
-  const std::string at = "c = " + number(sweep.clearance_m) + " m: ";
+  const std::string at = "c = " + fixed(sweep.clearance_m) + " m: ";
   if (sweep.samples.size() < limits.min_samples) {
     problems.push_back(at + "only " + std::to_string(sweep.samples.size()) +
                        " cycles in the sweep (at least " + std::to_string(limits.min_samples) +
@@ -117,11 +110,11 @@ SpinPoint spin_point(const SpinSweep& sweep, const SpinLimits& limits,
   point.ratio = ratio_of(w);
   if (point.turn_rate_radps < limits.min_turn_rate_radps) {
     problems.push_back(at + "the rover hardly turned (|ω3| at most " +
-                       number(point.turn_rate_radps) + " rad/s, at least " +
-                       number(limits.min_turn_rate_radps) +
+                       fixed(point.turn_rate_radps) + " rad/s, at least " +
+                       fixed(limits.min_turn_rate_radps) +
                        "): is it on the ground, are the wheels powered?");
   } else if (point.tau < limits.edge_tau || point.tau > 1.0 - limits.edge_tau) {
-    problems.push_back(at + "the turning rate peaked at τ = " + number(point.tau, 2) +
+    problems.push_back(at + "the turning rate peaked at τ = " + fixed(point.tau, 2) +
                        ", the edge of the sweep: the optimum was not bracketed");
   }
   return point;
@@ -135,7 +128,7 @@ void add_recordings(ProcedureResult& result, const std::vector<SpinSweep>& sweep
   Recording fitted;
   fitted.name = "spin";
   fitted.title = line ? "Figure 5.4: F-hat(c) at the peak turning rate and F(c) = " +
-                            number(line->gain, 2) + " c + " + number(line->offset, 2)
+                            fixed(line->gain, 2) + " c + " + fixed(line->offset, 2)
                       : "Figure 5.4: F-hat(c) at the peak turning rate (no line)";
   fitted.columns = {"clearance_m", "ratio", "fitted_ratio", "tau", "turn_rate_radps"};
   for (const SpinPoint& p : points) {
@@ -182,7 +175,7 @@ ProcedureResult fit_spin(const std::vector<SpinSweep>& sweeps, const SpinLimits&
   }
   for (const SpinPoint& p : points) {
     if (!(p.ratio > 1.0)) {
-      result.problems.push_back("c = " + number(p.clearance_m) + " m: F̂ = " + number(p.ratio) +
+      result.problems.push_back("c = " + fixed(p.clearance_m) + " m: F̂ = " + fixed(p.ratio) +
                                 " ≤ 1: the exterior wheels did not run faster than the center "
                                 "ones at the peak turning rate");
     }
@@ -209,13 +202,13 @@ ProcedureResult fit_spin(const std::vector<SpinSweep>& sweeps, const SpinLimits&
   result.quality["max_residual"] = line.residuals.max_abs;
   result.quality["r_squared"] = line.r_squared;
   if (!(line.gain > 0.0)) {
-    result.problems.push_back("F̂ does not grow with c (slope " + number(line.gain) +
+    result.problems.push_back("F̂ does not grow with c (slope " + fixed(line.gain) +
                               " /m): chapter 5.1 expects a longer base to need faster exterior "
                               "wheels");
   }
   if (line.residuals.rms > limits.max_rms_residual) {
-    result.problems.push_back("F̂ scatters about the line by " + number(line.residuals.rms) +
-                              " (rms; at most " + number(limits.max_rms_residual) +
+    result.problems.push_back("F̂ scatters about the line by " + fixed(line.residuals.rms) +
+                              " (rms; at most " + fixed(limits.max_rms_residual) +
                               "): uneven ground or a joint that moved");
   }
   toml::table spin;
@@ -268,7 +261,7 @@ ProcedureResult calibrate_spin(Bench& bench, const ProcedureOptions& options) {
     const double gamma = bending_for_clearance(c, geometry);
     BenchSetup stand;
     stand.placement = BenchSetup::Placement::kStand;
-    stand.instruction = "Procedure 5.1, c = " + number(c) +
+    stand.instruction = "Procedure 5.1, c = " + fixed(c) +
                         " m: lift the rover onto the stand (wheels free) so that the joints can "
                         "be set";
     bench.arrange(stand);
@@ -276,8 +269,8 @@ ProcedureResult calibrate_spin(Bench& bench, const ProcedureOptions& options) {
       ProcedureResult failed;
       failed.procedure = "spin";
       failed.reference = "Procedure 5.1";
-      failed.problems.push_back("the joints did not reach γ = " + number(gamma) +
-                                " rad for c = " + number(c) +
+      failed.problems.push_back("the joints did not reach γ = " + fixed(gamma) +
+                                " rad for c = " + fixed(c) +
                                 " m: are they initialised (Procedure 4.3) and free to move?");
       return failed;
     }
@@ -287,7 +280,7 @@ ProcedureResult calibrate_spin(Bench& bench, const ProcedureOptions& options) {
                mobility::axle_clearance_m(mobility::rear_joint_bending_rad(reached[1]), geometry));
     BenchSetup down;
     down.placement = BenchSetup::Placement::kGround;
-    down.instruction = "Procedure 5.1, c = " + number(c) +
+    down.instruction = "Procedure 5.1, c = " + fixed(c) +
                        " m: set the rover down on the flat ground, with room to spin";
     bench.arrange(down);
     sweeps.push_back(run_spin_sweep(bench, reached_c, ramp_s));

@@ -1,7 +1,6 @@
 #include "calibration/voltage.hpp"
 
 #include <cmath>
-#include <sstream>
 
 #include "calibration/fit.hpp"
 #include "calibration/procedures.hpp"
@@ -12,14 +11,6 @@ namespace {
 // Procedure 3.5: "several supply voltages U ranging from 27 down to 20 V".
 constexpr double kVoltages[] = {27.0, 26.0, 25.0, 24.0, 23.0, 22.0, 21.0, 20.0};
 constexpr double kHoldS = 2.0;
-
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
 
 }  // namespace
 

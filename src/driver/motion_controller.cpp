@@ -36,6 +36,19 @@ double respect_bounds(double command, double position, double min_rad, double ma
   return command;
 }
 
+// (4.4) as the driver applies it. The thesis' w^k is µi's answer to the request of cycle k (µi
+// samples vel when the request arrives, and the ReadyBoard waited for the answer within the
+// cycle); the driver receives that answer one cycle later, with the frames of cycle k + 1. So the
+// w the driver has in cycle k is the thesis' w^(k−1), and the ν to compare it with is the
+// thesis' ν^(k−1) = Σ_j δ^j ŵ^(k−1−j): the table's δ shifted by one cycle (δ⁰ of the driver is
+// 0 whatever the table says). The calibration of Procedure 4.8 writes δ in the thesis' indexing.
+adaptation::NoLoadEstimator driver_estimator(const Params& params) {
+  ResponseParams response =
+      adaptation::select_response(params.responses, params.cycle.period_s, params.cycle.con);
+  response.delta.insert(response.delta.begin(), 0.0);
+  return adaptation::NoLoadEstimator(response);
+}
+
 }  // namespace
 
 struct MotionController::JointCommands {
@@ -66,15 +79,13 @@ MotionController::MotionController(const Params& params)
     : params_(&params),
       curve_(adaptation::select_motor_curve(params.motor_curves, params.cycle.icr)),
       backlash_(params.motors),
-      estimator_(adaptation::select_response(params.responses, params.cycle.period_s,
-                                             params.cycle.con)),
+      estimator_(driver_estimator(params)),
       gait_(params.geometry, params.joints, params.gaits, params.motors) {}
 
 void MotionController::reset_joint_positions(const MotorVector& shaft_position_rad) {
   backlash_.reset(shaft_position_rad);
   joint_velocity_ = {};
-  estimator_ = adaptation::NoLoadEstimator(adaptation::select_response(
-      params_->responses, params_->cycle.period_s, params_->cycle.con));
+  estimator_ = driver_estimator(*params_);
   last_w_hat_ = {};
 }
 
@@ -87,10 +98,8 @@ void MotionController::track(const MotionInput& input, DriverStatus& status) {
   backlash_.update(input.shaft_position_rad, input.shaft_velocity_radps);
   const MotorVector w = backlash_.joint_velocity_radps();
   const MotorVector p = backlash_.joint_position_rad();
-  // (4.4) with δ⁰ = 0 needs only the history; otherwise last cycle's ŵ stands in for ŵ^k.
-  const MotorVector nu = estimator_.delta().front() == 0.0
-                             ? estimator_.no_load_velocity_radps()
-                             : estimator_.no_load_velocity_radps(last_w_hat_);
+  // (4.4) one cycle late (driver_estimator): the history of the commands sent is all it needs.
+  const MotorVector nu = estimator_.no_load_velocity_radps();
   load_ = adaptation::load(w, nu);
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     MotorStatus& m = status.motors[i];

@@ -9,15 +9,14 @@
 #include <random>
 
 #include "calibration/procedures.hpp"
+#include "calibration_test_support.hpp"
 #include "config/calibration.hpp"
-#include "config/load_params.hpp"
 #include "sim/rover/simulated_rover.hpp"
 
 namespace marsokhod::calibration {
 namespace {
 
-const char* const kConfigFile = MARSOKHOD_SOURCE_DIR "/config/marsokhod.toml";
-Params config() { return config::load_params(kConfigFile); }
+using namespace testing;
 
 // The mean of ≥ 190 readings with 0.7 counts of noise before rounding is good to ≈ 0.1 count;
 // the truth is drawn ±2 counts from the configured table, so 0.5 count separates them.
@@ -25,17 +24,6 @@ constexpr double kToleranceCounts = 0.5;
 // Seed 5's unit differs from the configured table by more than the tolerance in every entry
 // (asserted below), so returning the configured table fails.
 constexpr std::uint64_t kSeed = 5;
-
-std::string first(const std::vector<std::string>& problems) {
-  return problems.empty() ? "(no problem)" : problems.front();
-}
-
-bool contains(const std::vector<std::string>& problems, const std::string& text) {
-  for (const std::string& p : problems) {
-    if (p.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
 
 // Synthetic placements of a sensor with the given table, noise and count per placement.
 std::vector<AccelerometerPlacement> synthetic(const SensorParams& table, double noise_counts,
@@ -102,7 +90,7 @@ TEST(AccelerometerCalibration, RefusesReadingsNotAtRest) {
   const ProcedureResult result = fit_accelerometer(synthetic(SensorParams{}, 6.0, 200),
                                                    SensorParams{});
   EXPECT_FALSE(result.accepted());
-  EXPECT_TRUE(contains(result.problems, "not at rest")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "not at rest")) << first(result.problems);
   EXPECT_TRUE(result.values.empty());
 }
 
@@ -110,7 +98,7 @@ TEST(AccelerometerCalibration, RefusesTooFewReadings) {
   const ProcedureResult result = fit_accelerometer(synthetic(SensorParams{}, 0.7, 10),
                                                    SensorParams{});
   EXPECT_FALSE(result.accepted());
-  EXPECT_TRUE(contains(result.problems, "only 10 readings")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "only 10 readings")) << first(result.problems);
 }
 
 TEST(AccelerometerCalibration, RefusesAPlacementThatWasNotTheOneAskedFor) {
@@ -119,12 +107,12 @@ TEST(AccelerometerCalibration, RefusesAPlacementThatWasNotTheOneAskedFor) {
   placements[1].readings_counts = placements[0].readings_counts;
   const ProcedureResult result = fit_accelerometer(placements, SensorParams{});
   EXPECT_FALSE(result.accepted());
-  EXPECT_TRUE(contains(result.problems, "acc1: up and down differ by")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "acc1: up and down differ by")) << first(result.problems);
   // A missing placement is named.
   placements = synthetic(SensorParams{}, 0.7, 200);
   placements.pop_back();
   const ProcedureResult missing = fit_accelerometer(placements, SensorParams{});
-  EXPECT_TRUE(contains(missing.problems, "x3 down is missing")) << first(missing.problems);
+  EXPECT_TRUE(mentions(missing.problems, "x3 down is missing")) << first(missing.problems);
 }
 
 TEST(AccelerometerCalibration, IsInTheProcedureTable) {

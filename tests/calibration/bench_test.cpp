@@ -9,7 +9,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "config/load_params.hpp"
+#include "calibration_test_support.hpp"
 #include "sim/rover/simulated_rover.hpp"
 
 namespace marsokhod::calibration {
@@ -17,7 +17,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-Params config() { return config::load_params(MARSOKHOD_SOURCE_DIR "/config/marsokhod.toml"); }
+using testing::config;
 
 BenchSetup stand(double roll = 0.0, double pitch = 0.0) {
   BenchSetup s;

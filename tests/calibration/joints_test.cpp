@@ -9,15 +9,14 @@
 #include <cmath>
 
 #include "calibration/procedures.hpp"
+#include "calibration_test_support.hpp"
 #include "config/calibration.hpp"
-#include "config/load_params.hpp"
 #include "sim/rover/simulated_rover.hpp"
 
 namespace marsokhod::calibration {
 namespace {
 
-const char* const kConfigFile = MARSOKHOD_SOURCE_DIR "/config/marsokhod.toml";
-Params config() { return config::load_params(kConfigFile); }
+using namespace testing;
 
 constexpr std::uint64_t kSeed = 4;
 
@@ -26,17 +25,6 @@ constexpr std::uint64_t kSeed = 4;
 // encoder's 55 µrad: 3 % of the gap plus 1 mrad holds it, while the truth lies at least 6 % from
 // the configured value.
 double tolerance_rad(double truth_rad) { return 0.03 * truth_rad + 0.001; }
-
-std::string first(const std::vector<std::string>& problems) {
-  return problems.empty() ? "(no problem)" : problems.front();
-}
-
-bool contains(const std::vector<std::string>& problems, const std::string& text) {
-  for (const std::string& p : problems) {
-    if (p.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
 
 std::array<std::vector<JointHold>, 2> holds_of(const std::vector<double>& front,
                                                const std::vector<double>& rear,
@@ -97,7 +85,7 @@ TEST(JointsCalibration, RefusesAJointThatMoved) {
   const ProcedureResult result =
       fit_joints(holds_of({0.0, 0.05, 0.0, 0.05}, {0.0, 0.25, 0.0, 0.25}, 0.05), {}, MotorParams{});
   EXPECT_FALSE(result.accepted());
-  EXPECT_TRUE(contains(result.problems, "the joint moved")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "the joint moved")) << first(result.problems);
   EXPECT_TRUE(result.values.empty());
 }
 
@@ -105,7 +93,7 @@ TEST(JointsCalibration, RefusesReversalsThatDisagree) {
   const ProcedureResult result = fit_joints(
       holds_of({0.0, 0.05, 0.0, 0.09, 0.0}, {0.0, 0.25, 0.0, 0.25, 0.0}), {}, MotorParams{});
   EXPECT_FALSE(result.accepted());
-  EXPECT_TRUE(contains(result.problems, "front joint: the reversals disagree"))
+  EXPECT_TRUE(mentions(result.problems, "front joint: the reversals disagree"))
       << first(result.problems);
 }
 
@@ -113,7 +101,7 @@ TEST(JointsCalibration, RefusesTooFewReversals) {
   const ProcedureResult result =
       fit_joints(holds_of({0.0, 0.05}, {0.0, 0.25}), {}, MotorParams{});
   EXPECT_FALSE(result.accepted());
-  EXPECT_TRUE(contains(result.problems, "1 reversals measured")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "1 reversals measured")) << first(result.problems);
 }
 
 TEST(JointsCalibration, IsInTheProcedureTable) {

@@ -19,10 +19,7 @@
 namespace marsokhod::calibration {
 namespace {
 
-bool mentions(const std::vector<std::string>& problems, const std::string& word) {
-  return std::any_of(problems.begin(), problems.end(),
-                     [&](const std::string& p) { return p.find(word) != std::string::npos; });
-}
+using testing::mentions;
 
 // d rising from 0 to 0.6 over `seconds`; the wheel turns at ≈ 3·d rad/s; the strap sits 1.1 rad
 // ahead of p̄ = 0; l = τ·B± plus a slow misfit of ζ·W in d, plus noise.
@@ -96,10 +93,7 @@ testing::TestUnit unit_off_nominal() {
 TEST(LoadSim, RecoversTheTrueDroopOfTheFrontLeftMotor) {
   const testing::TestUnit unit = unit_off_nominal();
   const sim::MotorTruth& motor = unit.truth.motors[kFrontLeft];
-  SimBench bench(unit.params, testing::unit_options(unit));
-  ProcedureOptions options;
-  options.duration_s = 90.0;
-  const ProcedureResult result = calibrate_load(bench, options);
+  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_load, 90.0);
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   const Params fitted = testing::apply_values(unit, result.values);
   // At d ≥ 0.3 and icr = 511 the simulator's B is its base value (sim_truth.hpp).

@@ -62,32 +62,10 @@ Tracking drive_on_stand(const Params& params, const testing::TestUnit& unit,
 TEST(LoadTracking, TheCalibratedDriverTracksAnUnloadedRunBetterThanTheNominalOne) {
   const testing::TestUnit unit = testing::drawn_unit(17);
   toml::table values;
-  {
-    SimBench bench(unit.params, testing::unit_options(unit));
-    ProcedureOptions options;
-    options.duration_s = 60.0;
-    const ProcedureResult curve = calibrate_motor_curve(bench, options);
-    ASSERT_TRUE(curve.accepted()) << curve.problems.front();
-    testing::merge_values(values, curve.values);
-  }
-  const Params with_curve = testing::apply_values(unit, values);
-  {
-    SimBench bench(with_curve, testing::unit_options(unit));
-    ProcedureOptions options;
-    options.duration_s = 30.0;
-    const ProcedureResult scale = calibrate_motor_scale(bench, options);
-    ASSERT_TRUE(scale.accepted()) << scale.problems.front();
-    testing::merge_values(values, scale.values);
-  }
-  const Params with_scale = testing::apply_values(unit, values);
-  {
-    SimBench bench(with_scale, testing::unit_options(unit));
-    ProcedureOptions options;
-    options.duration_s = 60.0;
-    const ProcedureResult response = calibrate_response(bench, options);
-    ASSERT_TRUE(response.accepted()) << response.problems.front();
-    testing::merge_values(values, response.values);
-  }
+  ASSERT_NO_FATAL_FAILURE(testing::calibrate_in_turn(
+      unit,
+      {{calibrate_motor_curve, 60.0}, {calibrate_motor_scale, 30.0}, {calibrate_response, 60.0}},
+      values));
   const Params calibrated = testing::apply_values(unit, values);
   const Params& nominal = unit.params;
 

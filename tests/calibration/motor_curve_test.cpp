@@ -19,10 +19,7 @@
 namespace marsokhod::calibration {
 namespace {
 
-bool mentions(const std::vector<std::string>& problems, const std::string& word) {
-  return std::any_of(problems.begin(), problems.end(),
-                     [&](const std::string& p) { return p.find(word) != std::string::npos; });
-}
+using testing::mentions;
 
 // A smooth curve with a dead zone, like the simulator's.
 double synthetic_w(double d) {
@@ -115,10 +112,7 @@ TEST(MotorCurveFit, TabulatesADeadZoneWiderThanTheFirstStep) {
 // Against the simulator: W is the mean of the wheels' true no-load speeds at 24 V.
 TEST(MotorCurveSim, RecoversTheUnitsMeanCurveWhereTheNominalTableIsOff) {
   const testing::TestUnit unit = testing::drawn_unit(7);
-  SimBench bench(unit.params, testing::unit_options(unit));
-  ProcedureOptions options;
-  options.duration_s = 60.0;
-  const ProcedureResult result = calibrate_motor_curve(bench, options);
+  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_motor_curve, 60.0);
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   EXPECT_EQ(result.procedure, "motor-curve");
 
@@ -144,10 +138,7 @@ TEST(MotorCurveSim, RecoversTheUnitsMeanCurveWhereTheNominalTableIsOff) {
 
 TEST(MotorCurveSim, RefusesASweepOfAFewSeconds) {
   const testing::TestUnit unit = testing::drawn_unit(7);
-  SimBench bench(unit.params, testing::unit_options(unit));
-  ProcedureOptions options;
-  options.duration_s = 4.0;
-  const ProcedureResult result = calibrate_motor_curve(bench, options);
+  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_motor_curve, 4.0);
   EXPECT_FALSE(result.accepted());
 }
 

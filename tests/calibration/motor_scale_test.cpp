@@ -18,10 +18,7 @@
 namespace marsokhod::calibration {
 namespace {
 
-bool mentions(const std::vector<std::string>& problems, const std::string& word) {
-  return std::any_of(problems.begin(), problems.end(),
-                     [&](const std::string& p) { return p.find(word) != std::string::npos; });
-}
+using testing::mentions;
 
 constexpr std::array<double, kWheelCount> kScales{0.99, 0.98, 0.97, 0.94, 0.975, 0.965};
 
@@ -68,10 +65,7 @@ TEST(MotorScaleFit, RefusesNoisyData) {
 // With the nominal W: ζ_i = the wheel's true speed at 0.7 over the table's W(0.7).
 TEST(MotorScaleSim, RecoversTheTrueScalesRelativeToTheConfiguredCurve) {
   const testing::TestUnit unit = testing::drawn_unit(11);
-  SimBench bench(unit.params, testing::unit_options(unit));
-  ProcedureOptions options;
-  options.duration_s = 30.0;
-  const ProcedureResult result = calibrate_motor_scale(bench, options);
+  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_motor_scale, 30.0);
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   const Params fitted = testing::apply_values(unit, result.values);
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(unit.params.motor_curves, 511));
@@ -108,23 +102,8 @@ TEST(MotorScaleSim, RefusesAWheelWithALooseEncoder) {
 TEST(MotorScaleSim, AfterMotorCurveTheProductIsEachWheelsTrueSpeed) {
   const testing::TestUnit unit = testing::drawn_unit(12);
   toml::table values;
-  {
-    SimBench bench(unit.params, testing::unit_options(unit));
-    ProcedureOptions options;
-    options.duration_s = 60.0;
-    const ProcedureResult curve = calibrate_motor_curve(bench, options);
-    ASSERT_TRUE(curve.accepted()) << curve.problems.front();
-    testing::merge_values(values, curve.values);
-  }
-  const Params with_curve = testing::apply_values(unit, values);
-  {
-    SimBench bench(with_curve, testing::unit_options(unit));
-    ProcedureOptions options;
-    options.duration_s = 30.0;
-    const ProcedureResult scale = calibrate_motor_scale(bench, options);
-    ASSERT_TRUE(scale.accepted()) << scale.problems.front();
-    testing::merge_values(values, scale.values);
-  }
+  ASSERT_NO_FATAL_FAILURE(testing::calibrate_in_turn(
+      unit, {{calibrate_motor_curve, 60.0}, {calibrate_motor_scale, 30.0}}, values));
   const Params fitted = testing::apply_values(unit, values);
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(fitted.motor_curves, 511));
   const adaptation::MotorCurve nominal(

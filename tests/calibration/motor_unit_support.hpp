@@ -1,15 +1,20 @@
 // Shared by the motor procedures' tests (motor-curve, motor-scale, response, load, the load
 // tracking test): a simulated unit drawn from a seed, kept fixed while the driver's configuration
 // changes (SimOptions::unit), and the configuration after Procedure 3.5 on it (its true supply
-// conversion, so that U is measured right and the motor procedures are judged on their own).
+// conversion, so that U is measured right and the motor procedures are judged on their own), and
+// the procedures run in turn on it.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <toml++/toml.h>
 
 #include <cstdint>
 #include <filesystem>
+#include <vector>
 
 #include "calibration/bench.hpp"
+#include "calibration/procedures.hpp"
+#include "calibration_test_support.hpp"
 #include "config/calibration.hpp"
 #include "config/load_params.hpp"
 #include "core/params.hpp"
@@ -19,9 +24,7 @@
 
 namespace marsokhod::calibration::testing {
 
-inline std::filesystem::path config_file() {
-  return std::filesystem::path(MARSOKHOD_SOURCE_DIR) / "config" / "marsokhod.toml";
-}
+inline std::filesystem::path config_file() { return kConfigFile; }
 
 struct TestUnit {
   std::uint64_t seed = 0;
@@ -69,6 +72,42 @@ inline Params apply_values(const TestUnit& unit, const toml::table& values) {
   Params params = config::apply_calibration_values(config_file(), values);
   params.sensors.supply = unit.truth.sensors.supply;
   return params;
+}
+
+using Calibrate = ProcedureResult (*)(Bench&, const ProcedureOptions&);
+
+// One procedure with --duration on the unit's laboratory bench, the driver configured by
+// `params` (by unit.params when not given).
+inline ProcedureResult calibrate_unit(const TestUnit& unit, const Params& params,
+                                      Calibrate calibrate, double duration_s) {
+  SimBench bench(params, unit_options(unit));
+  ProcedureOptions options;
+  options.duration_s = duration_s;
+  return calibrate(bench, options);
+}
+
+inline ProcedureResult calibrate_unit(const TestUnit& unit, Calibrate calibrate,
+                                      double duration_s) {
+  return calibrate_unit(unit, unit.params, calibrate, duration_s);
+}
+
+// One procedure of a chain and how long it runs (--duration).
+struct ChainStep {
+  Calibrate calibrate;
+  double duration_s = 0.0;
+};
+
+// Runs the steps in turn on the unit, each with the configuration the values before it give
+// (the first with unit.params), and merges every step's values into `values`. Fails fatally at
+// the first refused fit: call it in ASSERT_NO_FATAL_FAILURE.
+inline void calibrate_in_turn(const TestUnit& unit, const std::vector<ChainStep>& steps,
+                              toml::table& values) {
+  for (const ChainStep& step : steps) {
+    const Params params = values.empty() ? unit.params : apply_values(unit, values);
+    const ProcedureResult result = calibrate_unit(unit, params, step.calibrate, step.duration_s);
+    ASSERT_TRUE(result.accepted()) << result.procedure << ": " << result.problems.front();
+    merge_values(values, result.values);
+  }
 }
 
 // The unit's true no-load speed of motor i at d, Ū = 24 V [rad/s].

@@ -21,10 +21,7 @@
 namespace marsokhod::calibration {
 namespace {
 
-bool mentions(const std::vector<std::string>& problems, const std::string& word) {
-  return std::any_of(problems.begin(), problems.end(),
-                     [&](const std::string& p) { return p.find(word) != std::string::npos; });
-}
+using testing::mentions;
 
 const std::vector<double> kChain{0.0, 0.20, 0.40, 0.29, 0.10};
 
@@ -57,13 +54,13 @@ TEST(ResponseFit, RecoversTheCoefficientsOfAChirp) {
   EXPECT_NEAR(fit.sum, 0.99, 0.01);
 }
 
-TEST(ResponseFit, PredictionMatchesTheDriversEstimator) {
-  // predict_response in bench order equals NoLoadEstimator's ν in driver order, one cycle later.
-  const std::vector<double> w_hat{0.5, 0.6, 0.65, 0.7};
+TEST(ResponseFit, PredictionIsTheThesisExample) {
+  // Example 4.10: ŵ³…ŵ⁶ = 0.5, 0.6, 0.65, 0.7 give ν⁷ = 0.6332 (history before ŵ³ = 0.5); ŵ⁷
+  // (here 9.9) does not count, δ⁰ = 0.
+  const std::vector<double> w_hat{0.5, 0.6, 0.65, 0.7, 9.9};
   const std::vector<double> nu = predict_response({0.0, 0.2452, 0.3742, 0.2798, 0.1008}, w_hat);
-  // Example 4.10: ŵ³…ŵ⁶ = 0.5, 0.6, 0.65, 0.7 give ν⁷ = 0.6332 (history before ŵ³ = 0.5).
-  EXPECT_NEAR(nu[3], 0.2452 * 0.7 + 0.3742 * 0.65 + 0.2798 * 0.6 + 0.1008 * 0.5, 1e-12);
-  EXPECT_NEAR(nu[3], 0.6332, 5e-5);
+  EXPECT_NEAR(nu[4], 0.2452 * 0.7 + 0.3742 * 0.65 + 0.2798 * 0.6 + 0.1008 * 0.5, 1e-12);
+  EXPECT_NEAR(nu[4], 0.6332, 5e-5);
 }
 
 TEST(ResponseFit, RefusesAChirpTooShort) {
@@ -87,11 +84,10 @@ TEST(ResponseFit, RefusesNoisyData) {
 
 // The simulator's chain on the stand, from its own parts: the motor's lag (MotorModel, the
 // unit's τ), the free wheel's inertia against the droop B± (torque (ω0 − ω)/B, the reflected
-// rotor and the wheel), µi's velocity window of T(con) ending at the request, and the driver's
-// indexing (w^k from the response to the request of cycle k−1). Its least-squares δ on the
+// rotor and the wheel) and µi's velocity window of T(con) ending at the request (the thesis'
+// indexing: w^k is sampled when the request of cycle k arrives). Its least-squares δ on the
 // procedure's chirp is what Procedure 4.8 on the stand must find. (sim_truth.hpp's
-// (0, 0.20, 0.40, 0.29, 0.10) is the chain without the wheel's inertia, in the thesis' indexing,
-// where w^k is sampled when the request of cycle k arrives: one cycle earlier.)
+// (0, 0.20, 0.40, 0.29, 0.10) is the chain without the wheel's inertia.)
 std::vector<double> chain_delta(const sim::MotorTruth& motor, double seconds) {
   constexpr double h = 0.0156;
   constexpr double dt = 0.0001;
@@ -139,10 +135,7 @@ std::vector<double> chain_delta(const sim::MotorTruth& motor, double seconds) {
 
 TEST(ResponseSim, RecoversTheChainOfTheSimulatedStandWhereTheThesisTableIsOff) {
   const testing::TestUnit unit = testing::drawn_unit(31);
-  SimBench bench(unit.params, testing::unit_options(unit));
-  ProcedureOptions procedure;
-  procedure.duration_s = 60.0;
-  const ProcedureResult result = calibrate_response(bench, procedure);
+  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_response, 60.0);
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   const toml::array& responses = *result.values["response"].as_array();
   ASSERT_EQ(responses.size(), 1u);
@@ -152,7 +145,7 @@ TEST(ResponseSim, RecoversTheChainOfTheSimulatedStandWhereTheThesisTableIsOff) {
   ASSERT_EQ(delta.size(), 8u);
   // The chain of the front-left wheel (the wheels differ only by a ±2 ms lag).
   const std::vector<double> truth = chain_delta(unit.truth.motors[0], 60.0);
-  constexpr double kTolerance = 0.05;  // the fit is ≈ 0.035 off at worst; the thesis' 0.29
+  constexpr double kTolerance = 0.05;  // the fit is 0.049 off at worst (δ²); the thesis 0.15
   const std::vector<double> thesis{0.0, 0.2452, 0.3742, 0.2798, 0.1008, 0.0, 0.0, 0.0};
   double thesis_worst = 0.0;
   for (std::size_t j = 0; j < 8; ++j) {

@@ -22,27 +22,15 @@
 
 #include "calibration/joints.hpp"
 #include "calibration/procedures.hpp"
+#include "calibration_test_support.hpp"
 #include "config/calibration.hpp"
-#include "config/load_params.hpp"
 #include "core/mobility/lever_geometry.hpp"
 #include "sim/rover/simulated_rover.hpp"
 
 namespace marsokhod::calibration {
 namespace {
 
-const char* const kConfigFile = MARSOKHOD_SOURCE_DIR "/config/marsokhod.toml";
-Params config() { return config::load_params(kConfigFile); }
-
-std::string first(const std::vector<std::string>& problems) {
-  return problems.empty() ? "(no problem)" : problems.front();
-}
-
-bool contains(const std::vector<std::string>& problems, const std::string& text) {
-  for (const std::string& p : problems) {
-    if (p.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
+using namespace testing;
 
 // A synthetic sweep: the turning rate peaks at τ = peak_tau, where the exterior wheels run
 // `ratio` times the center ones.
@@ -151,11 +139,11 @@ TEST(SpinCalibration, TheFitOfSyntheticSweepsIsTheirLine) {
 TEST(SpinCalibration, RefusesTooFewAxleDistancesAndShortSweeps) {
   const ProcedureResult few =
       fit_spin({synthetic_sweep(0.4, 2.2, 0.5), synthetic_sweep(0.5, 2.7, 0.5)});
-  EXPECT_TRUE(contains(few.problems, "only 2 axle distances")) << first(few.problems);
+  EXPECT_TRUE(mentions(few.problems, "only 2 axle distances")) << first(few.problems);
   const ProcedureResult short_sweep = fit_spin({synthetic_sweep(0.4, 2.2, 0.5, 50),
                                                 synthetic_sweep(0.45, 2.4, 0.5),
                                                 synthetic_sweep(0.5, 2.7, 0.5)});
-  EXPECT_TRUE(contains(short_sweep.problems, "only 50 cycles")) << first(short_sweep.problems);
+  EXPECT_TRUE(mentions(short_sweep.problems, "only 50 cycles")) << first(short_sweep.problems);
   EXPECT_TRUE(short_sweep.values.empty());
 }
 
@@ -163,18 +151,18 @@ TEST(SpinCalibration, RefusesAnUnbracketedPeakAndSlowExteriorWheels) {
   const ProcedureResult edge = fit_spin({synthetic_sweep(0.4, 2.2, 1.2),
                                          synthetic_sweep(0.45, 2.4, 0.5),
                                          synthetic_sweep(0.5, 2.7, 0.5)});
-  EXPECT_TRUE(contains(edge.problems, "not bracketed")) << first(edge.problems);
+  EXPECT_TRUE(mentions(edge.problems, "not bracketed")) << first(edge.problems);
   const ProcedureResult slow = fit_spin({synthetic_sweep(0.4, 0.8, 0.5),
                                          synthetic_sweep(0.45, 2.4, 0.5),
                                          synthetic_sweep(0.5, 2.7, 0.5)});
-  EXPECT_TRUE(contains(slow.problems, "≤ 1")) << first(slow.problems);
+  EXPECT_TRUE(mentions(slow.problems, "≤ 1")) << first(slow.problems);
 }
 
 TEST(SpinCalibration, RefusesScatteredPoints) {
   const ProcedureResult result = fit_spin({synthetic_sweep(0.4, 2.2, 0.5),
                                            synthetic_sweep(0.45, 3.4, 0.5),
                                            synthetic_sweep(0.5, 2.7, 0.5)});
-  EXPECT_TRUE(contains(result.problems, "scatters about the line")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "scatters about the line")) << first(result.problems);
 }
 
 TEST(SpinCalibration, TheJointAngleGivesTheAxleDistance) {

@@ -17,29 +17,17 @@
 #include <unistd.h>
 
 #include "calibration/procedures.hpp"
+#include "calibration_test_support.hpp"
 #include "config/calibration.hpp"
-#include "config/load_params.hpp"
 #include "runner/scenario.hpp"
 #include "runner/scenario_runner.hpp"
 
 namespace marsokhod::calibration {
 namespace {
 
-const char* const kConfigFile = MARSOKHOD_SOURCE_DIR "/config/marsokhod.toml";
-Params config() { return config::load_params(kConfigFile); }
+using namespace testing;
 
 constexpr double kHeldOutRmsV = 0.35;
-
-std::string first(const std::vector<std::string>& problems) {
-  return problems.empty() ? "(no problem)" : problems.front();
-}
-
-bool contains(const std::vector<std::string>& problems, const std::string& text) {
-  for (const std::string& p : problems) {
-    if (p.find(text) != std::string::npos) return true;
-  }
-  return false;
-}
 
 // Records a scenario into a fresh temporary folder and returns the folder.
 std::filesystem::path record(const std::string& name) {
@@ -131,14 +119,14 @@ TEST(VoltageDropCalibration, RecoversTheCoefficientsOfDataThatFollowsTheModel) {
 TEST(VoltageDropCalibration, RefusesTooFewCycles) {
   const ProcedureResult result = fit_voltage_drop(synthetic(100, 0.6, 0.4, 0.02));
   EXPECT_FALSE(result.accepted());
-  EXPECT_TRUE(contains(result.problems, "too few cycles")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "too few cycles")) << first(result.problems);
   EXPECT_TRUE(result.values.empty());
 }
 
 TEST(VoltageDropCalibration, RefusesNoisyData) {
   const ProcedureResult result = fit_voltage_drop(synthetic(2000, 0.6, 0.4, 2.0));
   EXPECT_FALSE(result.accepted());
-  EXPECT_TRUE(contains(result.problems, "explains too little")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "explains too little")) << first(result.problems);
 }
 
 TEST(VoltageDropCalibration, RefusesADriveThatDoesNotExciteBothTerms) {
@@ -149,25 +137,25 @@ TEST(VoltageDropCalibration, RefusesADriveThatDoesNotExciteBothTerms) {
     s.load_radps.fill(0.0);
   }
   const ProcedureResult result = fit_voltage_drop(flat);
-  EXPECT_TRUE(contains(result.problems, "the duty cycles hardly vary")) << first(result.problems);
-  EXPECT_TRUE(contains(result.problems, "the loads hardly vary"));
+  EXPECT_TRUE(mentions(result.problems, "the duty cycles hardly vary")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "the loads hardly vary"));
   // The load rising and falling with the duty: collinear.
   std::vector<VoltageDropSample> together = synthetic(2000, 0.6, 0.4, 0.02);
   for (VoltageDropSample& s : together) s.load_radps[0] = s.duty[0];
   const ProcedureResult collinear = fit_voltage_drop(together);
-  EXPECT_TRUE(contains(collinear.problems, "cannot be told apart")) << first(collinear.problems);
+  EXPECT_TRUE(mentions(collinear.problems, "cannot be told apart")) << first(collinear.problems);
 }
 
 TEST(VoltageDropCalibration, RefusesANegativeCoefficient) {
   // The drop shrinks as the load grows.
   const ProcedureResult result = fit_voltage_drop(synthetic(2000, 0.6, -0.4, 0.02));
   EXPECT_FALSE(result.accepted());
-  EXPECT_TRUE(contains(result.problems, "Ξ = ")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "Ξ = ")) << first(result.problems);
 }
 
 TEST(VoltageDropCalibration, NeedsARecording) {
   const ProcedureResult result = calibrate_voltage_drop(config(), {});
-  EXPECT_TRUE(contains(result.problems, "--from")) << first(result.problems);
+  EXPECT_TRUE(mentions(result.problems, "--from")) << first(result.problems);
   ProcedureOptions options;
   options.from = "/nonexistent/folder";
   EXPECT_THROW(calibrate_voltage_drop(config(), options), std::runtime_error);

@@ -5,28 +5,22 @@
 #include <gtest/gtest.h>
 
 #include "calibration/procedures.hpp"
+#include "calibration_test_support.hpp"
 #include "config/calibration.hpp"
 #include "sim/rover/simulated_rover.hpp"
 
 namespace marsokhod::calibration {
 namespace {
 
-const char* kConfig = MARSOKHOD_SOURCE_DIR "/config/marsokhod.toml";
-
-bool mentions(const ProcedureResult& r, const std::string& word) {
-  for (const std::string& p : r.problems) {
-    if (p.find(word) != std::string::npos) return true;
-  }
-  return false;
-}
+using namespace testing;
 
 TEST(VoltageProcedure, RecoversTheUnitsSupplyConversion) {
-  const Params params = config::load_params(kConfig);
+  const Params params = config();
   SimBench bench(params, sim_bench_options(11));
   const ProcedureResult result = calibrate_voltage(bench, {});
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   const LinearConversion truth = bench.rover().sim_truth().sensors.supply;
-  const Params fitted = config::apply_calibration_values(kConfig, result.values);
+  const Params fitted = config::apply_calibration_values(kConfigFile, result.values);
   // Over battery operation's range, 20–27 V: vcc from 900 down to 890… wherever the unit reads.
   double worst_fitted = 0.0;
   double worst_nominal = 0.0;
@@ -60,25 +54,25 @@ TEST(VoltageFit, AcceptsCleanPointsAndRefusesPoorOnes) {
 
   std::vector<VoltagePoint> noisy = clean_points();
   noisy[3].vcc_sd_counts = 6.0;  // a supply that wanders
-  EXPECT_TRUE(mentions(fit_voltage(noisy), "wanders"));
+  EXPECT_TRUE(mentions(fit_voltage(noisy).problems, "wanders"));
 
   std::vector<VoltagePoint> off = clean_points();
   off[2].measured_v += 0.3;  // a misread multimeter
-  EXPECT_TRUE(mentions(fit_voltage(off), "off the line"));
+  EXPECT_TRUE(mentions(fit_voltage(off).problems, "off the line"));
 
   std::vector<VoltagePoint> few = clean_points();
   few.resize(3);
-  EXPECT_TRUE(mentions(fit_voltage(few), "at least 4"));
+  EXPECT_TRUE(mentions(fit_voltage(few).problems, "at least 4"));
 
   std::vector<VoltagePoint> short_hold = clean_points();
   short_hold[0].samples = 5;
-  EXPECT_TRUE(mentions(fit_voltage(short_hold), "only 5 readings"));
+  EXPECT_TRUE(mentions(fit_voltage(short_hold).problems, "only 5 readings"));
 
   std::vector<VoltagePoint> narrow;
   for (double volts : {24.0, 24.5, 25.0, 25.5}) {
     narrow.push_back({volts, (volts + 41.0823) / 0.06768, 0.4, 128});
   }
-  EXPECT_TRUE(mentions(fit_voltage(narrow), "span only"));
+  EXPECT_TRUE(mentions(fit_voltage(narrow).problems, "span only"));
 }
 
 TEST(VoltageProcedure, IsInTheTable) {

@@ -154,6 +154,39 @@ TEST_F(SpinDriverTest, SpinProducesTheM2Pattern) {
   EXPECT_LT(m[kFrontLeft].duty, 0.0);
 }
 
+// (4.4) in the driver's cycle: µi answers request k with vel sampled when it arrives (the
+// thesis' w^k), and the driver has that answer only in cycle k + 1. A motor whose speed follows
+// the commanded one exactly one cycle late has δ = (0, 1): w^k = ŵ^(k−1). The driver must then
+// estimate ν = w exactly while it ramps the duty cycles, so the load l stays 0 (within vel's
+// quantum of 1/(T(0)·115000/2π) = 0.0017 rad/s); comparing w^k with ν^(k+1) instead would show
+// the ramp's step, 0.05 duty ≈ 0.15 rad/s, as load.
+class OneCycleChainDriverTest : public DriverTest {
+ protected:
+  static Params one_cycle_chain() {
+    Params p;
+    p.responses = {{kH, 0, {0.0, 1.0}}};
+    return p;
+  }
+  OneCycleChainDriverTest() : DriverTest(one_cycle_chain()) { rover.velocity_delay_cycles = 1; }
+};
+
+TEST_F(OneCycleChainDriverTest, TheLoadOfAnUnloadedRampIsZero) {
+  start_up();
+  const OperatorInput forward = targets(2.0);
+  double largest_load = 0.0;
+  double largest_step = 0.0;
+  double previous = 0.0;
+  for (int k = 0; k < 60; ++k) {
+    cycle(&forward);
+    const MotorStatus& m = driver.status().motors[kFrontLeft];
+    largest_load = std::max(largest_load, std::abs(m.load_radps));
+    largest_step = std::max(largest_step, std::abs(m.velocity_radps - previous));
+    previous = m.velocity_radps;
+  }
+  EXPECT_GT(largest_step, 0.05) << "the duty cycles did not ramp";
+  EXPECT_LT(largest_load, 0.002);
+}
+
 TEST_F(DriverTest, OperatorSilenceStopsTheRoverAfterHalfASecond) {
   start_up();
   const OperatorInput forward = targets(1.5);

@@ -28,6 +28,9 @@ class ScriptedRover {
   std::array<int, 8> configured_icr{};
   int dog = 0;
   int measurement_requests = 0;
+  // vel reports the speed of the duty received this many requests earlier (0: of this very
+  // request, as if the motor responded at once): a response chain δ = (0, …, 0, 1) of (4.4).
+  int velocity_delay_cycles = 0;
 
   // Applies one cycle's requests, moves the motors for dt, and returns the responses.
   std::vector<protocol::CanFrame> respond(const std::vector<protocol::CanFrame>& requests,
@@ -47,6 +50,7 @@ class ScriptedRover {
     bool dir = false;
     std::uint16_t stp = 0;
     double tim_ticks = 0.0;
+    std::vector<double> speeds;  // one per request
   };
   std::array<Registers, 8> reg_{};
   Params params_;
@@ -96,8 +100,12 @@ class ScriptedRover {
     r.pulses += std::abs(speed) * dt_s * kPulsesPerRad;
     shaft_rad[node] += speed * dt_s;
     r.tim_ticks += dt_s * 2.0e6;
-    // vel: pulses in the last T(0) = 32.768 ms at this speed.
-    const double vel = std::abs(speed) * 0.032768 * kPulsesPerRad;
+    // vel: pulses in the last T(0) = 32.768 ms at this speed (or at an earlier one).
+    r.speeds.push_back(speed);
+    const auto delay = static_cast<std::size_t>(velocity_delay_cycles);
+    const double reported =
+        r.speeds.size() > delay ? r.speeds[r.speeds.size() - 1 - delay] : 0.0;
+    const double vel = std::abs(reported) * 0.032768 * kPulsesPerRad;
     return {node, wrap(r.tim_ticks), wrap(r.pulses), r.stp, r.dir,
             static_cast<std::uint16_t>(std::lround(vel))};
   }
