@@ -100,6 +100,10 @@ int run_calibrate_command(const CalibrateArgs& args, const LoadedConfig& config,
     return kUsageError;
   }
   print_result(result, out);
+  if (bench) {
+    out << "  measured for " << std::fixed << std::setprecision(1) << bench->time_s()
+        << " s of bench time" << std::defaultfloat << "\n";
+  }
   if (!args.plot.empty()) {
     try {
       if (const auto note = calibration::write_recordings(result.recordings, args.plot)) {

@@ -5,11 +5,19 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "bus/socketcand_server.hpp"
+#include "config/load_params.hpp"
+#include "sim/rover/simulated_rover.hpp"
 
 namespace marsokhod::app {
 namespace {
@@ -189,6 +197,82 @@ TEST_F(CliCalibrate, ARecordingKeepsTheCalibrationAndReplaysBitForBit) {
   std::filesystem::remove(path("run/calibration.toml"));
   r = cli({"--config", kConfig.c_str(), "replay", out.c_str()});
   EXPECT_EQ(r.status, 1) << r.out << r.err;
+}
+
+// A simulated rover served over socketcand in real time, as `marsokhod sim` serves it: what a
+// real rover looks like to `calibrate --can`.
+class ServedRover {
+ public:
+  ServedRover()
+      : params_(config::load_params(kConfig)),
+        rover_(params_, sim::SimOptions{}),
+        server_(bus::SocketcandServer::Config{"127.0.0.1", 0, "can0"},
+                [this](const protocol::CanFrame& f) {
+                  const std::lock_guard lock(mutex_);
+                  inbox_.push_back(f);
+                }) {
+    server_.start();
+    thread_ = std::thread([this] {
+      const auto start = std::chrono::steady_clock::now();
+      for (std::int64_t k = 1; !stop_; ++k) {
+        std::this_thread::sleep_until(start + std::chrono::milliseconds(k));
+        std::vector<protocol::CanFrame> frames;
+        {
+          const std::lock_guard lock(mutex_);
+          frames.swap(inbox_);
+        }
+        for (const auto& f : frames) rover_.send(f, rover_.time_s());
+        for (const sim::TimedFrame& f : rover_.advance_to(static_cast<double>(k) * 1e-3)) {
+          server_.broadcast(f.frame, f.time_s);
+        }
+      }
+    });
+  }
+  ~ServedRover() {
+    stop_ = true;
+    thread_.join();
+    server_.stop();
+  }
+  std::string url() const {
+    return "socketcand://127.0.0.1:" + std::to_string(server_.port()) + "/can0";
+  }
+
+ private:
+  Params params_;
+  sim::SimulatedRover rover_;
+  std::mutex mutex_;
+  std::vector<protocol::CanFrame> inbox_;
+  bus::SocketcandServer server_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+// On a real bus the command tells the operator what to do, waits for Enter and reads the
+// multimeter from the keyboard. Here nobody turns the supply's knob (the rover behind socketcand
+// has its battery): the procedure runs through and refuses to write, saying why.
+TEST_F(CliCalibrate, OnABusTheOperatorIsGuidedAndAPoorFitIsRefused) {
+  const ServedRover rover;
+  const std::string url = rover.url();
+  const std::string file = path("bus.toml");
+  std::string operator_input;
+  for (int point = 0; point < 8; ++point) operator_input += "\n24.1\n";
+  operator_input += "\n";
+  Result r = cli({"--config", kConfig.c_str(), "calibrate", "voltage", "--can", url.c_str(),
+                  "--duration", "1.6", "--out", file.c_str()},
+                 operator_input);
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("Set the laboratory supply to 27 V."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Type the multimeter's reading"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("the voltages span only 0.00 V"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(file));
+
+  // q gives up: nothing is written, and the reason is said.
+  r = cli({"--config", kConfig.c_str(), "calibrate", "voltage", "--can", url.c_str(), "--out",
+           file.c_str()},
+          "q\n");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("given up by the operator"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(file));
 }
 
 }  // namespace
