@@ -113,7 +113,6 @@ class Bench {
   virtual double measure_supply_v() = 0;
   // "simulator (seed 7, tether)" or "socketcand://host:29536/can0": for the calibration file.
   virtual std::string source() const = 0;
-  virtual bool simulated() const { return false; }
 
   const Params& params() const { return params_; }
   double period_s() const { return params_.cycle.period_s; }
@@ -167,7 +166,6 @@ class SimBench final : public Bench {
   void arrange(const BenchSetup& setup) override;
   double measure_supply_v() override;
   std::string source() const override;
-  bool simulated() const override { return true; }
   sim::SimulatedRover& rover();
 
  protected:

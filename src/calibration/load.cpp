@@ -153,7 +153,6 @@ ProcedureResult calibrate_load(Bench& bench, const ProcedureOptions& options) {
   result.reference = "Procedure 4.13";
   const double duration_s = duration_of(options, 90.0, result.procedure);
   const int icr = options.icr.value_or(params.cycle.icr);
-  note_motors_ignored(options, "the front-left wheel (Procedure 4.13)", result);
   const std::size_t wheel = kFrontLeft;
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(params.motor_curves, icr));
   const double nominal_v = params.motors.nominal_supply_v;

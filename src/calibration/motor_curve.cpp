@@ -202,7 +202,7 @@ ProcedureResult calibrate_motor_curve(Bench& bench, const ProcedureOptions& opti
 
   const int icr = options.icr.value_or(params.cycle.icr);
   const double duration_s = duration_of(options, 120.0, result.procedure);
-  const std::vector<std::size_t> wheels = wheels_of(options, result.procedure);
+  const std::vector<std::size_t> wheels = all_wheels();
 
   bench.arrange(stand_at_nominal_supply(
       params, " (Procedure 4.4). The wheels will speed up slowly to full speed and back."));

@@ -99,7 +99,6 @@ ProcedureResult calibrate_motor_scale(Bench& bench, const ProcedureOptions& opti
   result.reference = "Procedure 4.5";
   const double duration_s = duration_of(options, 120.0, result.procedure);
   const int icr = options.icr.value_or(params.cycle.icr);
-  note_motors_ignored(options, "all six wheels", result);
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(params.motor_curves, icr));
   const double curve_speed = curve.velocity_radps(kScaleDuty);
 

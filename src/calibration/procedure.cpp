@@ -15,25 +15,10 @@ double duration_of(const ProcedureOptions& options, double default_s, std::strin
   return duration_s;
 }
 
-std::vector<std::size_t> wheels_of(const ProcedureOptions& options, std::string_view procedure) {
-  std::vector<std::size_t> wheels = options.motors;
-  if (wheels.empty()) {
-    for (std::size_t w = 0; w < kWheelCount; ++w) wheels.push_back(w);
-  }
-  for (const std::size_t w : wheels) {
-    if (w >= kWheelCount) {
-      throw std::invalid_argument(std::string(procedure) + ": motor " + std::to_string(w) +
-                                  " is not a wheel (0 … 5); the joints cannot turn freely");
-    }
-  }
+std::vector<std::size_t> all_wheels() {
+  std::vector<std::size_t> wheels;
+  for (std::size_t w = 0; w < kWheelCount; ++w) wheels.push_back(w);
   return wheels;
-}
-
-void note_motors_ignored(const ProcedureOptions& options, std::string_view measured,
-                         ProcedureResult& result) {
-  if (options.motors.empty()) return;
-  result.notes.push_back(result.procedure + " measures " + std::string(measured) +
-                         "; --motors is ignored");
 }
 
 std::string fixed(double value, int digits) {

@@ -51,7 +51,6 @@ struct ProcedureResult {
 struct ProcedureOptions {
   std::optional<double> duration_s;        // motor-scale (default 120 s), response (default 120 s)
   std::optional<int> icr;                  // motor-curve, load (default: the configured icr)
-  std::vector<std::size_t> motors;         // empty: the procedure's default motors
   std::optional<std::filesystem::path> from;  // voltage-drop: a scenario's --out folder
 };
 
@@ -65,15 +64,8 @@ std::optional<std::string> write_recordings(const std::vector<Recording>& record
 // when it is not positive.
 double duration_of(const ProcedureOptions& options, double default_s, std::string_view procedure);
 
-// The wheels a procedure on the stand drives: --motors, or all six when none are given. Throws
-// std::invalid_argument naming the procedure ("motor-curve") when a motor is not a wheel: the
-// joints cannot turn freely on the stand.
-std::vector<std::size_t> wheels_of(const ProcedureOptions& options, std::string_view procedure);
-
-// For a procedure that always measures the same motors (`measured`: "all six wheels"): when
-// --motors was given, a note in `result` that it is ignored.
-void note_motors_ignored(const ProcedureOptions& options, std::string_view measured,
-                         ProcedureResult& result);
+// The wheels the stand procedures measure: all six (the joints cannot turn freely on the stand).
+std::vector<std::size_t> all_wheels();
 
 // `value` in fixed notation with `digits` digits after the point: fixed(24.0, 1) = "24.0".
 std::string fixed(double value, int digits = 3);

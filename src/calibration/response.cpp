@@ -258,7 +258,7 @@ ProcedureResult calibrate_response(Bench& bench, const ProcedureOptions& options
   const int icr = options.icr.value_or(params.cycle.icr);
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(params.motor_curves, icr));
   const double nominal_v = params.motors.nominal_supply_v;
-  const std::vector<std::size_t> wheels = wheels_of(options, result.procedure);
+  const std::vector<std::size_t> wheels = all_wheels();
 
   bench.arrange(stand_at_nominal_supply(
       params, " (Procedure 4.8). The wheels will oscillate faster and faster for " +

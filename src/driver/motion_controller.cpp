@@ -86,7 +86,6 @@ void MotionController::reset_joint_positions(const MotorVector& shaft_position_r
   backlash_.reset(shaft_position_rad);
   joint_velocity_ = {};
   estimator_ = driver_estimator(*params_);
-  last_w_hat_ = {};
 }
 
 void MotionController::observe(const MotionInput& input, DriverStatus& status) {
@@ -279,11 +278,12 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
 }
 
 void MotionController::record_sent(const MotorVector& duty, double supply_v) {
+  MotorVector w_hat{};
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    last_w_hat_[i] = adaptation::no_load_velocity(curve_, duty[i], params_->motors.scale[i],
-                                                  supply_v, params_->motors.nominal_supply_v);
+    w_hat[i] = adaptation::no_load_velocity(curve_, duty[i], params_->motors.scale[i], supply_v,
+                                            params_->motors.nominal_supply_v);
   }
-  estimator_.push(last_w_hat_);
+  estimator_.push(w_hat);
   last_duty_ = duty;
 }
 

@@ -85,7 +85,6 @@ class MotionController {
   // motors (chapter 4.4). The measured joint velocity cannot serve: it is 0 while a shaft
   // crosses its backlash gap, and the law would never leave the gap.
   std::array<double, 2> joint_velocity_{};
-  MotorVector last_w_hat_{};
   MotorVector last_duty_{};
   MotorVector load_{};
 };

@@ -15,15 +15,6 @@ constexpr std::array<std::string_view, std::variant_size_v<OperatorMessage>> kTy
     "gamepad", "targets", "stop", "clear_faults", "take_control", "release_control", "configure",
     "ping"};
 
-constexpr std::array<std::pair<mobility::Gait, std::string_view>, 6> kGaitIds = {{
-    {mobility::Gait::kNone, "none"},
-    {mobility::Gait::kRolking, "rolking"},
-    {mobility::Gait::kFrontWheelWalking, "front-wheel-walking"},
-    {mobility::Gait::kRearWheelWalking, "rear-wheel-walking"},
-    {mobility::Gait::kWormLike, "worm-like"},
-    {mobility::Gait::kRolkingExtendedBase, "rolking-extended-base"},
-}};
-
 constexpr std::array<std::pair<LoadDistributionMode, std::string_view>, 3> kLoadDistributionIds = {{
     {LoadDistributionMode::kOff, "off"},
     {LoadDistributionMode::kVariance, "v"},
@@ -59,9 +50,11 @@ GamepadMessage parse_gamepad(const Json& message) {
 
 mobility::Gait read_gait(const Json& value) {
   const std::string& id = read_string(value, "gait");
-  if (const auto gait = gait_from_id(id)) return *gait;
+  if (const auto gait = mobility::gait_from_id(id)) return *gait;
   std::string allowed;
-  for (const auto& [gait, name] : kGaitIds) allowed += (allowed.empty() ? "" : ", ") + std::string(name);
+  for (const mobility::Gait gait : mobility::kAllGaits) {
+    allowed += (allowed.empty() ? "" : ", ") + std::string(mobility::gait_id(gait));
+  }
   throw FieldError("gait", "gait: unknown gait " + shown_value(value) + "; expected one of " + allowed);
 }
 
@@ -202,20 +195,6 @@ std::string_view message_type(const OperatorMessage& message) {
   return kTypeNames.at(message.index());
 }
 
-std::string_view gait_id(mobility::Gait gait) {
-  for (const auto& [value, id] : kGaitIds) {
-    if (value == gait) return id;
-  }
-  return "none";
-}
-
-std::optional<mobility::Gait> gait_from_id(std::string_view id) {
-  for (const auto& [gait, name] : kGaitIds) {
-    if (id == name) return gait;
-  }
-  return std::nullopt;
-}
-
 std::string_view load_distribution_id(LoadDistributionMode mode) {
   for (const auto& [value, id] : kLoadDistributionIds) {
     if (value == mode) return id;
@@ -256,7 +235,7 @@ Json operator_message_json(const OperatorMessage& message) {
           return {{"type", "targets"},          {"v1", value.v1_radps},
                   {"v2", value.v2_radps},       {"v4", value.v4_radps},
                   {"v6", value.v6_radps},       {"v7", value.v7_radps},
-                  {"gait", gait_id(value.gait)}, {"gait_speed", value.gait_speed},
+                  {"gait", mobility::gait_id(value.gait)}, {"gait_speed", value.gait_speed},
                   {"calibration_mode", value.calibration_mode}};
         } else if constexpr (std::is_same_v<Message, ConfigureMessage>) {
           return configure_json(value);

@@ -105,9 +105,6 @@ std::string_view message_type(const OperatorMessage& message);
 // gives the message back (the round trip the tests and the fuzzer check).
 nlohmann::json operator_message_json(const OperatorMessage& message);
 
-// The protocol's gait ids ("front-wheel-walking"); gait_name() is the label for people.
-std::string_view gait_id(mobility::Gait gait);
-std::optional<mobility::Gait> gait_from_id(std::string_view id);
 std::string_view load_distribution_id(LoadDistributionMode mode);
 
 // What the driver takes from a message: gamepad, targets, stop and clear_faults become an

@@ -35,7 +35,7 @@ Json bus_json(const driver::BusCounters& bus) {
 }
 
 Json gait_json(const driver::DriverStatus& s) {
-  return {{"id", gait_id(s.gait)},
+  return {{"id", mobility::gait_id(s.gait)},
           {"name", mobility::gait_name(s.gait)},
           {"state", s.gait_state},
           {"speed", s.gait_speed}};

@@ -10,14 +10,6 @@ namespace {
 using nlohmann::json;
 using mobility::Gait;
 
-constexpr std::array<std::pair<Gait, const char*>, 6> kGaits{{
-    {Gait::kNone, "none"},
-    {Gait::kRolking, "rolking"},
-    {Gait::kFrontWheelWalking, "front-wheel-walking"},
-    {Gait::kRearWheelWalking, "rear-wheel-walking"},
-    {Gait::kWormLike, "worm-like"},
-    {Gait::kRolkingExtendedBase, "rolking-extended-base"},
-}};
 
 template <class T>
 T field(const json& j, const char* key, const std::string& where, T fallback) {
@@ -61,17 +53,8 @@ mobility::OperatorTargets targets_from_json(const json& j) {
 
 }  // namespace
 
-std::string gait_key(Gait gait) {
-  for (const auto& [g, key] : kGaits) {
-    if (g == gait) return key;
-  }
-  return "none";
-}
-
 Gait gait_from_key(const std::string& key) {
-  for (const auto& [g, name] : kGaits) {
-    if (key == name) return g;
-  }
+  if (const auto gait = mobility::gait_from_id(key)) return *gait;
   throw std::invalid_argument("gait: \"" + key +
                               "\" is not a gait; expected none, rolking, front-wheel-walking, "
                               "rear-wheel-walking, worm-like or rolking-extended-base");
@@ -83,7 +66,7 @@ json to_json(const driver::OperatorInput& input) {
   if (input.targets) {
     const auto& t = *input.targets;
     json tj = {{"v1", t.v1_radps}, {"v2", t.v2_radps}, {"v4", t.v4_radps}, {"v6", t.v6_radps},
-               {"v7", t.v7_radps}, {"gait", gait_key(t.gait)}, {"gait_speed", t.gait_speed},
+               {"v7", t.v7_radps}, {"gait", std::string(mobility::gait_id(t.gait))}, {"gait_speed", t.gait_speed},
                {"calibration_mode", t.calibration_mode}};
     const auto& b = t.joint_buttons;
     tj["joint_buttons"] = {b.contract_front, b.extend_front, b.contract_rear, b.extend_rear};

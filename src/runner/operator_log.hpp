@@ -20,7 +20,6 @@ driver::RuntimeSettings runtime_settings_from_json(const nlohmann::json& json,
                                                    driver::RuntimeSettings base);
 
 // "rolking" ⇄ Gait::kRolking, with the names of docs/operator-protocol.md.
-std::string gait_key(mobility::Gait gait);
 mobility::Gait gait_from_key(const std::string& key);  // throws std::invalid_argument
 
 }  // namespace marsokhod::runner

@@ -88,7 +88,7 @@ TEST(OperatorMessage, RoundTripsEveryGait) {
        {mobility::Gait::kNone, mobility::Gait::kRolking, mobility::Gait::kFrontWheelWalking,
         mobility::Gait::kRearWheelWalking, mobility::Gait::kWormLike,
         mobility::Gait::kRolkingExtendedBase}) {
-    EXPECT_EQ(gait_from_id(gait_id(gait)), gait);
+    EXPECT_EQ(mobility::gait_from_id(mobility::gait_id(gait)), gait);
     TargetsMessage targets;
     targets.gait = gait;
     expect_round_trip(targets);

@@ -72,6 +72,33 @@ std::string_view gait_name(Gait gait) {
   return "unknown";
 }
 
+namespace {
+
+constexpr std::array<std::pair<Gait, std::string_view>, 6> kGaitIds = {{
+    {Gait::kNone, "none"},
+    {Gait::kRolking, "rolking"},
+    {Gait::kFrontWheelWalking, "front-wheel-walking"},
+    {Gait::kRearWheelWalking, "rear-wheel-walking"},
+    {Gait::kWormLike, "worm-like"},
+    {Gait::kRolkingExtendedBase, "rolking-extended-base"},
+}};
+
+}  // namespace
+
+std::string_view gait_id(Gait gait) {
+  for (const auto& [value, id] : kGaitIds) {
+    if (value == gait) return id;
+  }
+  return "none";
+}
+
+std::optional<Gait> gait_from_id(std::string_view id) {
+  for (const auto& [gait, name] : kGaitIds) {
+    if (id == name) return gait;
+  }
+  return std::nullopt;
+}
+
 std::span<const GaitState> gait_states(Gait gait) {
   switch (gait) {
     case Gait::kNone: return {};

@@ -24,7 +24,9 @@
 // ε → 1 − ε. Mirrored front-wheel walking walks backward on the rear wheels.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -45,6 +47,15 @@ enum class Gait {
 
 // "none", "rolking", "front-wheel walking", … for logs and the console.
 std::string_view gait_name(Gait gait);
+
+// The gaits' ids in the operator protocol, scenario files and recordings: "none", "rolking",
+// "front-wheel-walking", "rear-wheel-walking", "worm-like", "rolking-extended-base".
+std::string_view gait_id(Gait gait);
+std::optional<Gait> gait_from_id(std::string_view id);  // nullopt for an unknown id
+// Every gait, kNone first, in the order of the enum.
+inline constexpr std::array<Gait, 6> kAllGaits{Gait::kNone,           Gait::kRolking,
+                                               Gait::kFrontWheelWalking, Gait::kRearWheelWalking,
+                                               Gait::kWormLike,       Gait::kRolkingExtendedBase};
 
 enum class JointStroke { kContracted, kExtended, kMidStroke, kHeld };
 

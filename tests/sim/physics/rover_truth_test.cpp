@@ -127,12 +127,8 @@ TEST(RoverTruth, TotalMassIsRealistic) {
   EXPECT_LE(physics.total_mass_kg(), 100.0);
 }
 
-// The model builds and the rover stands on every kind of terrain.
-TEST(RoverTruth, StandsOnEveryTerrainKind) {
-  TerrainSpec plateau;
-  plateau.kind = TerrainKind::kHeightfield;
-  plateau.heightfield.image = GrayImage{3, 3, std::vector<double>(9, 0.5)};
-  plateau.heightfield.max_height_m = 0.4;
+// A tree trunk 16 cm thick lying across the path 1 m ahead (chapter 2, Figure 1.1).
+TerrainSpec tree_trunk_course() {
   TerrainSpec course;
   course.kind = TerrainKind::kObstacles;
   Obstacle trunk;
@@ -142,6 +138,16 @@ TEST(RoverTruth, StandsOnEveryTerrainKind) {
   trunk.cylinder_length_m = 2.0;
   trunk.roll_pitch_yaw_rad = {std::numbers::pi / 2, 0.0, 0.0};
   course.obstacles = {trunk};
+  return course;
+}
+
+// The model builds and the rover stands on every kind of terrain.
+TEST(RoverTruth, StandsOnEveryTerrainKind) {
+  TerrainSpec plateau;
+  plateau.kind = TerrainKind::kHeightfield;
+  plateau.heightfield.image = GrayImage{3, 3, std::vector<double>(9, 0.5)};
+  plateau.heightfield.max_height_m = 0.4;
+  const TerrainSpec course = tree_trunk_course();
   const std::array<std::pair<TerrainSpec, double>, 4> cases{{{TerrainSpec{}, 0.125},
                                                              {testing::slope_deg(10.0), 0.125},
                                                              {course, 0.125},
@@ -166,15 +172,7 @@ TEST(RoverTruth, StandsOnEveryTerrainKind) {
 // Chapter 2's "stones got stuck between the blades": a trunk 16 cm thick across the path is
 // climbed at 0.25 m/s.
 TEST(RoverTruth, ClimbsOverATreeTrunk) {
-  TerrainSpec course;
-  course.kind = TerrainKind::kObstacles;
-  Obstacle trunk;
-  trunk.shape = ObstacleShape::kCylinder;
-  trunk.center_m = {1.0, 0.0, 0.08};
-  trunk.cylinder_radius_m = 0.08;
-  trunk.cylinder_length_m = 2.0;
-  trunk.roll_pitch_yaw_rad = {std::numbers::pi / 2, 0.0, 0.0};
-  course.obstacles = {trunk};
+  const TerrainSpec course = tree_trunk_course();
   RoverPhysics physics(Params{}, course);
   physics.set_drive(drive_at(all_wheels(2.0)));
   double highest_m = 0.0;
