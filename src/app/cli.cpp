@@ -2,7 +2,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
 #include <cstdlib>
+#include <iostream>
 #include <fstream>
 #include <istream>
 #include <ostream>
@@ -83,6 +86,11 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   scenario_cmd->add_flag("--json", scenario.json, "print one JSON object");
   scenario_cmd->add_flag("--list", scenario.list, "name the shipped scenarios");
   scenario_cmd->add_flag("--no-plots", scenario.no_plots, "skip the gnuplot PNGs");
+  scenario_cmd->add_flag("--all", scenario.all, "every shipped scenario (a sweep)");
+  scenario_cmd->add_option("--seeds", scenario.seeds,
+                           "a sweep over the seeds A-B (each seed a different rover unit)");
+  scenario_cmd->add_option("--jobs", scenario.jobs, "runs at once in a sweep (default: one per core)")
+      ->check(CLI::Range(1, 256));
 
   RunArgs run;
   CLI::App* run_cmd = cli.add_subcommand(
@@ -192,6 +200,13 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   if (decode_cmd->parsed()) return run_decode(decode, params, in, out, err);
   if (scenario_cmd->parsed()) {
     if (seed_option->count() > 0) scenario.seed = seed;
+    if (seed_option->count() > 0 && (scenario.all || !scenario.seeds.empty())) {
+      err << "marsokhod scenario: --seed names one run; a sweep takes --seeds A-B\n";
+      return kUsageError;
+    }
+    std::error_code ec;
+    scenario.program = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+    scenario.progress = &err == &std::cerr && ::isatty(2) == 1;
     return run_scenario_command(scenario, loaded, out, err);
   }
   if (calibrate_cmd->parsed()) return run_calibrate_command(calibrate, loaded, in, out, err);

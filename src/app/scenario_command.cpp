@@ -1,14 +1,19 @@
 #include "app/scenario_command.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <thread>
 #include <ostream>
+#include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "config/calibration.hpp"
 #include "config/load_params.hpp"
 #include "runner/replay.hpp"
 #include "runner/scenario_runner.hpp"
+#include "runner/sweep.hpp"
 
 namespace marsokhod::app {
 namespace {
@@ -45,7 +50,93 @@ void print_text(const runner::ScenarioResult& r, std::ostream& out) {
   out << (r.passed ? "passed\n" : "FAILED\n");
 }
 
+// Every shipped scenario (name, file), the first folder's where names repeat.
+std::vector<std::pair<std::string, std::filesystem::path>> all_scenarios() {
+  std::vector<std::pair<std::string, std::filesystem::path>> found;
+  std::set<std::string> seen;
+  for (const auto& folder : scenario_folders()) {
+    for (const auto& [name, file] : runner::list_scenarios(folder)) {
+      if (seen.insert(name).second) found.emplace_back(name, file);
+    }
+  }
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+std::string minutes_and_seconds(double s) {
+  char text[32];
+  const long total = std::lround(std::max(s, 0.0));
+  std::snprintf(text, sizeof text, "%ldm%02lds", total / 60, total % 60);
+  return text;
+}
+
 }  // namespace
+
+int run_sweep_command(const ScenarioArgs& args, const LoadedConfig& config, std::ostream& out,
+                      std::ostream& err) {
+  runner::SweepPlan plan;
+  try {
+    if (!args.seeds.empty()) plan.seeds = runner::parse_seed_range(args.seeds);
+  } catch (const std::invalid_argument& e) {
+    err << "marsokhod scenario: " << e.what() << "\n";
+    return kUsageError;
+  }
+  if (args.all == !args.name.empty()) {
+    err << "marsokhod scenario: a sweep takes either a scenario NAME or --all\n";
+    return kUsageError;
+  }
+  std::vector<std::pair<std::string, std::filesystem::path>> chosen;
+  if (args.all) {
+    chosen = all_scenarios();
+  } else if (const auto file = find_scenario(args.name)) {
+    chosen.emplace_back(args.name, *file);
+  } else {
+    err << "marsokhod scenario: no scenario '" << args.name
+        << "': not a file, and not in the scenario folders (marsokhod scenario --list)\n";
+    return kUsageError;
+  }
+  for (const auto& [name, file] : chosen) {
+    try {
+      const runner::Scenario s = runner::load_scenario(file);
+      plan.scenarios.push_back({s.name, std::filesystem::absolute(file).string(), s.seed});
+    } catch (const std::invalid_argument& e) {
+      err << "marsokhod scenario: " << e.what() << "\n";
+      return kUsageError;
+    }
+  }
+  plan.program = args.program;
+  plan.common_args = {"--config", std::filesystem::absolute(config.config_file).string()};
+  if (!config.calibration_file.empty()) {
+    plan.common_args.insert(plan.common_args.end(),
+                            {"--calibration", std::filesystem::absolute(config.calibration_file).string()});
+  }
+  plan.jobs = args.jobs > 0 ? args.jobs : std::max(1u, std::thread::hardware_concurrency());
+  plan.out = args.out.empty() ? "" : std::filesystem::absolute(args.out).string();
+  const auto start = std::chrono::steady_clock::now();
+  const auto show = [&](const runner::SweepProgress& p) {
+    if (!args.progress) return;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double left = elapsed / static_cast<double>(p.done) * static_cast<double>(p.total - p.done);
+    err << "\rsweep: " << p.done << "/" << p.total << " runs, " << p.failed << " failed, "
+        << minutes_and_seconds(left) << " left   " << (p.done == p.total ? "\n" : "") << std::flush;
+  };
+  const runner::SweepSummary summary = runner::summarize(runner::run_sweep(plan, show));
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (args.json) {
+    nlohmann::ordered_json j = runner::to_json(summary);
+    j["wall_time_s"] = wall_s;
+    j["jobs"] = plan.jobs;
+    out << j.dump() << "\n";
+  } else {
+    out << runner::to_text(summary);
+    char line[160];
+    std::snprintf(line, sizeof line, "%.1f s wall time with %zu jobs: %.1f× real time\n", wall_s,
+                  plan.jobs, wall_s > 0.0 ? summary.sim_time_s / wall_s : 0.0);
+    out << line;
+  }
+  return summary.all_passed() ? 0 : 1;
+}
 
 std::vector<std::filesystem::path> scenario_folders() {
   std::vector<std::filesystem::path> folders;
@@ -61,19 +152,16 @@ int run_scenario_command(const ScenarioArgs& args, const LoadedConfig& config, s
                          std::ostream& err) {
   const Params& params = config.params;
   if (args.list) {
-    std::set<std::string> seen;
-    for (const auto& folder : scenario_folders()) {
-      for (const auto& [name, file] : runner::list_scenarios(folder)) {
-        if (!seen.insert(name).second) continue;
-        try {
-          out << name << "  " << runner::load_scenario(file).description << "\n";
-        } catch (const std::exception& e) {
-          out << name << "  (invalid: " << e.what() << ")\n";
-        }
+    for (const auto& [name, file] : all_scenarios()) {
+      try {
+        out << name << "  " << runner::load_scenario(file).description << "\n";
+      } catch (const std::exception& e) {
+        out << name << "  (invalid: " << e.what() << ")\n";
       }
     }
     return 0;
   }
+  if (args.all || !args.seeds.empty()) return run_sweep_command(args, config, out, err);
   if (args.name.empty()) {
     err << "marsokhod scenario: name a scenario or a file (marsokhod scenario --list names them)\n";
     return kUsageError;

@@ -20,7 +20,17 @@ struct ScenarioArgs {
   bool json = false;
   bool list = false;
   bool no_plots = false;
+  // A sweep: --all and/or --seeds A-B, run as child processes of `program`, `jobs` at a time.
+  bool all = false;
+  std::string seeds;
+  std::size_t jobs = 0;  // 0: one per core
+  std::string program;   // this executable
+  bool progress = false; // a progress line on standard error (a terminal)
 };
+
+// 0 when every run of the sweep passed, 1 when one failed, 2 for a bad argument.
+int run_sweep_command(const ScenarioArgs& args, const LoadedConfig& config, std::ostream& out,
+                      std::ostream& err);
 
 // The folders searched for NAME.toml: $MARSOKHOD_SCENARIOS, ./scenarios, the source tree's.
 std::vector<std::filesystem::path> scenario_folders();

@@ -39,7 +39,7 @@ void apply_fault(const FaultEvent& f, Session& session) {
 namespace {
 
 CheckResult evaluate(const Check& c, const std::map<std::string, double>& metrics) {
-  CheckResult r{c.name, c.metric, false, std::nan(""), ""};
+  CheckResult r{c.name, c.metric, false, std::nan(""), "", c.min, c.max};
   if (c.min && c.max) r.limit = "[" + number(*c.min) + ", " + number(*c.max) + "]";
   else if (c.min) r.limit = ">= " + number(*c.min);
   else r.limit = "<= " + number(*c.max);
@@ -151,7 +151,9 @@ nlohmann::ordered_json to_json(const ScenarioResult& r) {
                            {"passed", c.passed},
                            {"value", std::isfinite(c.value) ? nlohmann::ordered_json(c.value)
                                                             : nlohmann::ordered_json()},
-                           {"limit", c.limit}});
+                           {"limit", c.limit},
+                           {"min", c.min ? nlohmann::ordered_json(*c.min) : nlohmann::ordered_json()},
+                           {"max", c.max ? nlohmann::ordered_json(*c.max) : nlohmann::ordered_json()}});
   }
   j["passed"] = r.passed;
   if (!r.notes.empty()) j["notes"] = r.notes;

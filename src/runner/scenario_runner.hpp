@@ -24,6 +24,7 @@ struct CheckResult {
   bool passed = false;
   double value = 0.0;
   std::string limit;  // "[1, 3]", "≥ 1", "≤ 3"
+  std::optional<double> min, max;
 };
 
 struct ScenarioResult {
