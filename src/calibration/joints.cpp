@@ -7,6 +7,8 @@
 #include "calibration/fit.hpp"
 #include "calibration/procedures.hpp"
 #include "core/adaptation/backlash.hpp"
+#include "core/adaptation/motor_curve.hpp"
+#include "core/adaptation/no_load_velocity.hpp"
 #include "driver/startup.hpp"
 
 namespace marsokhod::calibration {
@@ -118,6 +120,15 @@ JointInitialisation initialise_joints(Bench& bench) {
   const BenchSample first = bench.last();
   const double start_s = first.time_s;
   MotorVector duty{};
+  const adaptation::MotorCurve curve(
+      adaptation::select_motor_curve(params.motor_curves, params.cycle.icr));
+  // ν of the joint motors at the duty sent (4.3), for the start-up's meeting of shaft and joint.
+  const auto no_load = [&](const BenchSample& s, std::size_t motor) {
+    const double supply_v =
+        s.sensors.supply_v > 1.0 ? s.sensors.supply_v : params.motors.nominal_supply_v;
+    return adaptation::no_load_velocity(curve, s.duty[motor], params.motors.scale[motor], supply_v,
+                                        params.motors.nominal_supply_v);
+  };
   // Startup times out after 3 s; the margin lets the duty rules bring the motors to rest.
   const auto max_cycles = static_cast<long>(std::ceil(2.0 * driver::kCalibrationTimeout_s /
                                                       bench.period_s()));
@@ -125,7 +136,8 @@ JointInitialisation initialise_joints(Bench& bench) {
     const BenchSample& s = bench.cycle(duty);
     const auto d = startup.calibrate(
         s.time_s, {s.position_rad[kFrontJoint], s.position_rad[kRearJoint]},
-        {s.velocity_radps[kFrontJoint], s.velocity_radps[kRearJoint]});
+        {s.velocity_radps[kFrontJoint], s.velocity_radps[kRearJoint]},
+        {no_load(s, kFrontJoint), no_load(s, kRearJoint)});
     duty[kFrontJoint] = d[0];
     duty[kRearJoint] = d[1];
   }

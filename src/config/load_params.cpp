@@ -107,6 +107,7 @@ JointParams read_joints(ConfigReader r) {
   j.control_rate_per_s = r.number("control_rate_per_s", 0.001, 100.0);
   j.control_speed_fraction = r.number("control_speed_fraction", 0.01, 1.0);
   j.target_tolerance_rad = r.number("target_tolerance_rad", 0.001, 1.0);
+  j.backlash_uncertainty = r.number("backlash_uncertainty", 0.0, 0.5);
   r.reject_unknown_keys();
   return j;
 }

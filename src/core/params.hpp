@@ -95,6 +95,9 @@ struct JointParams {
   double control_rate_per_s = 0.4;          // μ of (4.15) for the joints (Figure 4.11)
   double control_speed_fraction = 0.5;      // C = fraction·w (Figure 4.11: C = w/2)
   double target_tolerance_rad = 0.05;       // Procedure 4.17
+  // How far a unit's joint gap may differ from MotorParams::backlash_rad, as a share of it:
+  // the driver keeps that much inside the positive bounds (driver/joint_margin.hpp).
+  double backlash_uncertainty = 0.15;
 };
 
 // Chapter 5.1: F(c) = slope·c + offset, the exterior-to-center wheel speed ratio when spinning.

@@ -103,6 +103,7 @@ MotionInput Driver::motion_input(double period_s) const {
   in.supply_v = status_.supply_v > 1.0 ? status_.supply_v : params_->motors.nominal_supply_v;
   if (sensors_.state().update_count > 0) in.accel_mps2 = status_.accel_mps2;
   in.targets = targets_;
+  in.stopping = stopping_;
   return in;
 }
 
@@ -124,7 +125,9 @@ MotorVector Driver::wanted_duties(double time_s, const MotionInput& input) {
   if (status_.mode == DriverMode::kStartup && startup_.phase() == StartupPhase::kCalibrate) {
     const auto d = startup_.calibrate(
         time_s, {input.shaft_position_rad[kFrontJoint], input.shaft_position_rad[kRearJoint]},
-        {input.shaft_velocity_radps[kFrontJoint], input.shaft_velocity_radps[kRearJoint]});
+        {input.shaft_velocity_radps[kFrontJoint], input.shaft_velocity_radps[kRearJoint]},
+        {status_.motors[kFrontJoint].no_load_velocity_radps,
+         status_.motors[kRearJoint].no_load_velocity_radps});
     wanted[kFrontJoint] = d[0];
     wanted[kRearJoint] = d[1];
   } else if (status_.mode == DriverMode::kCalibration) {
@@ -155,6 +158,7 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
     if (rejection) status_.operator_rejection = *rejection;
   }
   targets_ = operator_.targets(time_s);
+  stopping_ = operator_.stopping(time_s);
   status_.operator_timeout = operator_.timed_out(time_s);
   status_.targets = {targets_.v1_radps, targets_.v2_radps, targets_.v4_radps, targets_.v6_radps,
                      targets_.v7_radps};

@@ -71,6 +71,7 @@ class Driver {
   double last_time_s_ = 0.0;
   bool was_calibrating_ = false;
   bool startup_calibrated_ = false;
+  bool stopping_ = false;  // the operator's stop or timeout is in force
   std::vector<protocol::CanFrame> requests_;
 };
 

@@ -17,11 +17,16 @@
 #include "core/mobility/joint_compensation.hpp"
 #include "core/mobility/lever_geometry.hpp"
 #include "core/mobility/summation.hpp"
+#include "core/tracking/clock.hpp"
+#include "driver/joint_margin.hpp"
 
 namespace marsokhod::driver {
 namespace {
 
 constexpr double kInsideBound = 0.999;  // targets strictly inside ±C keep (4.15)'s log defined
+// Commands this small are at rest: far inside every motor's dead zone (W(d) = 0 up to d ≈ 0.04,
+// about 0.1 rad/s), so cutting them to 0 moves nothing.
+constexpr double kRestRadps = 1e-3;
 
 double max_abs_wheel(const MotorVector& v) {
   double m = 0.0;
@@ -47,6 +52,28 @@ adaptation::NoLoadEstimator driver_estimator(const Params& params) {
       adaptation::select_response(params.responses, params.cycle.period_s, params.cycle.con);
   response.delta.insert(response.delta.begin(), 0.0);
   return adaptation::NoLoadEstimator(response);
+}
+
+// The time from a joint command to the joint's motion, seen from the position the driver has:
+// µi samples p̄ when the request arrives and the driver gets it with the next cycle's frames
+// (one period h old), and the motor follows a new duty with its lag τ. The response table of
+// (4.4) measures the same chain up to the centre of µi's vel window: its mean delay
+// h·Σ j·δ^j (the thesis' indexing) is τ + T(con)/2. So the dead time is
+//   h + h·Σ j·δ^j − T(con)/2      (34 ms with the thesis' δ at 64 Hz: τ ≈ 18.5 ms).
+// The joint laws plan from the position predicted that far ahead, p + v·dead time: a joint
+// braking from 0.4 rad/s toward a bound otherwise passes it by 0.4 × 0.034 = 0.014 rad.
+double joint_dead_time_s(const Params& params) {
+  const ResponseParams& r =
+      adaptation::select_response(params.responses, params.cycle.period_s, params.cycle.con);
+  double weighted = 0.0;
+  double total = 0.0;
+  for (std::size_t j = 0; j < r.delta.size(); ++j) {
+    weighted += static_cast<double>(j) * r.delta[j];
+    total += r.delta[j];
+  }
+  const double h = params.cycle.period_s;
+  const double mean_delay_s = total > 0.0 ? h * weighted / total : 0.0;
+  return std::max(0.0, h + mean_delay_s - 0.5 * tracking::clock_overflow_period_s(params.cycle.con));
 }
 
 }  // namespace
@@ -80,7 +107,9 @@ MotionController::MotionController(const Params& params)
       curve_(adaptation::select_motor_curve(params.motor_curves, params.cycle.icr)),
       backlash_(params.motors),
       estimator_(driver_estimator(params)),
-      gait_(params.geometry, params.joints, params.gaits, params.motors) {}
+      joints_(joint_bounds_with_backlash_margin(params.joints, params.motors)),
+      joint_dead_time_s_(joint_dead_time_s(params)),
+      gait_(params.geometry, joints_, params.gaits, params.motors) {}
 
 void MotionController::reset_joint_positions(const MotorVector& shaft_position_rad) {
   backlash_.reset(shaft_position_rad);
@@ -138,8 +167,8 @@ MotorVector MotionController::ramp_driving(const MotionInput& input,
 MotionController::JointCommands MotionController::joint_commands(const MotionInput& input,
                                                                  const RuntimeSettings& settings,
                                                                  DriverStatus& status) {
-  const control::MotionState front{status.motors[kFrontJoint].position_rad, joint_velocity_[0]};
-  const control::MotionState rear{status.motors[kRearJoint].position_rad, joint_velocity_[1]};
+  const control::MotionState front{predicted_joint_position(kFrontJoint, status), joint_velocity_[0]};
+  const control::MotionState rear{predicted_joint_position(kRearJoint, status), joint_velocity_[1]};
   const mobility::GaitOutput gait = gait_.update(
       {input.targets.gait, input.targets.gait_speed, intent_, front, rear, input.period_s,
        status.motors[kFrontJoint].velocity_radps, status.motors[kRearJoint].velocity_radps});
@@ -189,6 +218,46 @@ MotionController::JointCommands MotionController::joint_commands(const MotionInp
   return out;
 }
 
+MotionController::JointCommands MotionController::stopping_joint_commands() {
+  const control::ControlParams joint = control::joint_control_params(*params_);
+  JointCommands out;
+  std::array<double, 2> v{};
+  for (std::size_t j = 0; j < 2; ++j) {
+    const control::MotionState state{0.0, joint_velocity_[j]};
+    v[j] = control::step(state, control::velocity_control(state.velocity, 0.0, joint), joint).velocity;
+  }
+  out.front_radps = v[0];
+  out.rear_radps = v[1];
+  out.factors.front = mobility::front_axle_factor(intent_, mobility::front_clearance_intent(v[0]));
+  out.factors.rear = mobility::rear_axle_factor(intent_, mobility::rear_clearance_intent(v[1]));
+  return out;
+}
+
+double MotionController::predicted_joint_position(std::size_t motor,
+                                                  const DriverStatus& status) const {
+  const double v = joint_velocity_[motor == kFrontJoint ? 0 : 1];
+  return status.motors[motor].position_rad + v * joint_dead_time_s_;
+}
+
+bool MotionController::at_rest() const {
+  const auto small = [](double v) { return std::abs(v) < kRestRadps; };
+  return std::all_of(drive_velocity_.begin(), drive_velocity_.end(), small) &&
+         std::all_of(joint_velocity_.begin(), joint_velocity_.end(), small);
+}
+
+behaviour::JointBounds MotionController::with_backlash_margin(behaviour::JointBounds bounds,
+                                                             const DriverStatus& status) const {
+  const auto margin = [&](std::size_t motor) {
+    return positive_bound_margin_rad(params_->joints.backlash_uncertainty,
+                                     params_->motors.backlash_rad[motor],
+                                     status.motors[motor].shaft_position_rad,
+                                     status.motors[motor].position_rad);
+  };
+  bounds.front_max_rad = std::max(bounds.front_min_rad, bounds.front_max_rad - margin(kFrontJoint));
+  bounds.rear_max_rad = std::max(bounds.rear_min_rad, bounds.rear_max_rad - margin(kRearJoint));
+  return bounds;
+}
+
 MotorVector MotionController::to_duty(const MotorVector& w_hat, const MotionInput& input) const {
   MotorVector duty{};
   for (std::size_t i = 0; i < kMotorCount; ++i) {
@@ -221,13 +290,16 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   const double slope =
       std::abs(status.slope_rad) < params_->behaviours.slant_deadband_rad ? 0.0 : status.slope_rad;
   const behaviour::JointBounds bounds =
-      behaviour::slant_joint_bounds(slope, params_->joints, params_->geometry, settings.switches);
+      with_backlash_margin(behaviour::slant_joint_bounds(slope, params_->joints,
+                                                         params_->geometry, settings.switches),
+                           status);
   status.joint_bounds = {bounds.front_min_rad, bounds.front_max_rad, bounds.rear_min_rad,
                          bounds.rear_max_rad};
   // Remark 5.5, then the motions of (5.4).
   intent_ = mobility::driving_intent(intent_, input.targets.v1_radps);
   const MotorVector driving = ramp_driving(input, settings, status);
-  JointCommands joints = joint_commands(input, settings, status);
+  JointCommands joints =
+      input.stopping ? stopping_joint_commands() : joint_commands(input, settings, status);
   const double h = input.period_s;
   const auto front_place = behaviour::next_axle_placement(
       front_placement_, joints.factors.front, load_[kFrontJoint],
@@ -239,8 +311,10 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   rear_placement_ = rear_place.state;
   status.front_axle_factor = front_place.placement;
   status.rear_axle_factor = rear_place.placement;
-  joints.front_radps = respect_bounds(joints.front_radps, p6, bounds.front_min_rad, bounds.front_max_rad);
-  joints.rear_radps = respect_bounds(joints.rear_radps, p7, bounds.rear_min_rad, bounds.rear_max_rad);
+  joints.front_radps = respect_bounds(joints.front_radps, predicted_joint_position(kFrontJoint, status),
+                                      bounds.front_min_rad, bounds.front_max_rad);
+  joints.rear_radps = respect_bounds(joints.rear_radps, predicted_joint_position(kRearJoint, status),
+                                     bounds.rear_min_rad, bounds.rear_max_rad);
   joint_velocity_ = {joints.front_radps, joints.rear_radps};
   status.commands.v6_radps = joints.front_radps;
   status.commands.v7_radps = joints.rear_radps;
@@ -267,8 +341,18 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   const mobility::Summation sum = mobility::sum_motions(driving, walking, limit);
   status.driving_scale = sum.driving_scale;
   status.walking_scale = sum.walking_scale;
-  const MotorVector h_load = behaviour::load_distribution_radps(
-      load_, drive_velocity_[0], params_->load_distribution, settings.switches);
+  if (input.stopping && at_rest()) {
+    drive_velocity_ = {};
+    joint_velocity_ = {};
+    for (MotorStatus& m : status.motors) m.commanded_radps = 0.0;
+    status.commands = {};
+    return MotorVector{};
+  }
+  const MotorVector h_load =
+      input.stopping ? MotorVector{}
+                     : behaviour::load_distribution_radps(load_, drive_velocity_[0],
+                                                          params_->load_distribution,
+                                                          settings.switches);
   MotorVector w_hat{};
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     w_hat[i] = std::clamp(sum.velocities_radps[i] + h_load[i], -limit[i], limit[i]);

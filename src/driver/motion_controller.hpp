@@ -15,6 +15,7 @@
 #include "core/adaptation/motor_curve.hpp"
 #include "core/adaptation/no_load_estimator.hpp"
 #include "core/behaviour/axle_placement.hpp"
+#include "core/behaviour/slant_response.hpp"
 #include "core/behaviour/slope_estimate.hpp"
 #include "core/behaviour/switches.hpp"
 #include "core/mobility/axle_placement.hpp"
@@ -42,6 +43,10 @@ struct MotionInput {
   double supply_v = 24.0;             // U
   std::array<double, 3> accel_mps2{0.0, 0.0, -9.81};
   mobility::OperatorTargets targets;
+  // A controlled stop (operator timeout or stop): every motion ramps to rest with (4.14), no
+  // joint is moved back into its bounds and no load is redistributed, and once all are at rest
+  // every wanted duty is exactly 0 — the motors are off, not idling in their dead zone.
+  bool stopping = false;
 };
 
 class MotionController {
@@ -65,6 +70,12 @@ class MotionController {
  private:
   struct JointCommands;
   void track(const MotionInput& input, DriverStatus& status);
+  JointCommands stopping_joint_commands();
+  bool at_rest() const;
+  // p + v·dead time: where the joint will be when this cycle's command acts (joint_dead_time_s).
+  double predicted_joint_position(std::size_t motor, const DriverStatus& status) const;
+  behaviour::JointBounds with_backlash_margin(behaviour::JointBounds bounds,
+                                              const DriverStatus& status) const;
   JointCommands joint_commands(const MotionInput& input, const RuntimeSettings& settings,
                                DriverStatus& status);
   MotorVector ramp_driving(const MotionInput& input, const RuntimeSettings& settings,
@@ -75,6 +86,8 @@ class MotionController {
   adaptation::MotorCurve curve_;
   adaptation::RoverBacklashTracker backlash_;
   adaptation::NoLoadEstimator estimator_;
+  JointParams joints_;  // (5.3) with the full backlash margin, for the gaits' strokes
+  double joint_dead_time_s_;
   mobility::GaitSequencer gait_;
   mobility::DrivingIntent intent_ = mobility::DrivingIntent::kForward;
   behaviour::Vector3 gravity_ = behaviour::kInitialGravityDirection;

@@ -35,7 +35,8 @@ void Startup::on_dead_man_acknowledged() {
 }
 
 std::array<double, 2> Startup::calibrate(double time_s, const std::array<double, 2>& shaft_rad,
-                                         const std::array<double, 2>& shaft_speed_radps) {
+                                         const std::array<double, 2>& shaft_speed_radps,
+                                         const std::array<double, 2>& no_load_speed_radps) {
   if (phase_ != StartupPhase::kCalibrate) return {0.0, 0.0};
   if (!calibration_started_) {
     calibration_started_ = true;
@@ -47,8 +48,14 @@ std::array<double, 2> Startup::calibrate(double time_s, const std::array<double,
   std::array<double, 2> duty{};
   bool stopped = true;
   for (std::size_t j = 0; j < 2; ++j) {
-    // The shaft moves toward the negative end of the gap; once it has covered b it rests there.
-    if (shaft_start_rad_[j] - shaft_rad[j] >= gap[j]) gap_closed_[j] = true;
+    // The shaft moves toward the negative end of the gap; once it meets the joint it rests.
+    const double widest_gap = (1.0 + params_->joints.backlash_uncertainty) * gap[j];
+    const bool settled = time_s - calibration_start_s_ >= kEngagementSettle_s;
+    const bool slowed = std::abs(shaft_speed_radps[j]) <
+                        kEngagedSpeedShare * std::abs(no_load_speed_radps[j]);
+    if ((settled && slowed) || shaft_start_rad_[j] - shaft_rad[j] >= widest_gap) {
+      gap_closed_[j] = true;
+    }
     duty[j] = gap_closed_[j] ? 0.0 : -params_->operator_input.calibration_duty;
     stopped = stopped && gap_closed_[j] && std::abs(shaft_speed_radps[j]) < kShaftStoppedRadps;
   }

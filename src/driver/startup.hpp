@@ -2,10 +2,17 @@
 //   1. configure every motor controller: 0xi2 with icr (511), pwm = 0 and con, repeated each
 //      cycle until µi answers 0xi3 (icr changes only while pwm = 0, chapter 3.2);
 //   2. enable µ8's dead man's switch: 0x82 with dog, repeated until 0x83;
-//   3. Procedure 4.3: both joint motors at d = −calibration_duty until each shaft has travelled
-//      its backlash b_i toward the negative end (at most 3 s), then at rest until both shafts
+//   3. Procedure 4.3: both joint motors at d = −calibration_duty until each shaft has crossed
+//      its backlash gap toward the negative end (at most 3 s), then at rest until both shafts
 //      have stopped, then the joint positions are set to Remark 3.1's p̄⁰ = p⁰ (−1.2121,
-//      +1.2121) — set after the stop, so that no coasting is left to shift them;
+//      +1.2121) — set after the stop, so that no coasting is left to shift them. A shaft has
+//      crossed its gap when it meets its joint: the joint's weight slows it below half the
+//      no-load speed ν of its duty (measured: 0.13–0.15 rad/s free, 0.03–0.04 rad/s dragging
+//      the joint at d = −0.08), once ν has settled (kEngagementSettle_s). Travelling the
+//      configured b instead, as the thesis words it, drags the joint on by b − b_t on a unit
+//      whose true gap b_t is narrower (the rear joint out of (5.3) by up to 0.0375 rad), or stops
+//      short of the gap's end on a wider one; the measured meeting holds on every unit. If the
+//      shaft never slows, it stops after (1 + joints.backlash_uncertainty)·b, the widest gap;
 //   4. driving.
 // Pure: the phase advances on the responses it is shown and on time given as a value.
 #pragma once
@@ -23,6 +30,10 @@ std::string_view phase_name(StartupPhase phase);
 
 inline constexpr double kCalibrationTimeout_s = 3.0;  // Procedure 4.3: "in no more than 3 s"
 inline constexpr double kShaftStoppedRadps = 0.005;   // a shaft this slow has stopped
+// ν of (4.4) follows a duty step within its δ table (5 cycles, one late: 0.094 s at 64 Hz) and
+// the motor's lag; before that w̄ < ν/2 says nothing.
+inline constexpr double kEngagementSettle_s = 0.15;
+inline constexpr double kEngagedSpeedShare = 0.5;  // w̄ below this share of ν: the gap is closed
 
 class Startup {
  public:
@@ -35,11 +46,12 @@ class Startup {
   void on_configured(std::size_t motor);
   // Phase 2: µ8 answered 0x83.
   void on_dead_man_acknowledged();
-  // Phase 3, every cycle: the measured shaft positions p̄6, p̄7 and speeds w̄6, w̄7 at time t.
-  // Returns the joint duty cycles to apply (0 once a joint has travelled its gap). Starts timing
-  // on the first call.
+  // Phase 3, every cycle: the measured shaft positions p̄6, p̄7, speeds w̄6, w̄7 and the no-load
+  // speeds ν6, ν7 of (4.4) at time t. Returns the joint duty cycles to apply (0 once a joint's
+  // gap is closed). Starts timing on the first call.
   std::array<double, 2> calibrate(double time_s, const std::array<double, 2>& shaft_rad,
-                                  const std::array<double, 2>& shaft_speed_radps);
+                                  const std::array<double, 2>& shaft_speed_radps,
+                                  const std::array<double, 2>& no_load_speed_radps);
 
  private:
   void advance();
