@@ -48,13 +48,15 @@ void print_summary(const runner::SoakResult& r, std::ostream& out) {
   const runner::OperatorStats& o = r.operator_stats;
   std::snprintf(line, sizeof line,
                 "operator: %llu commands, %llu silences (%llu beyond the timeout), %llu hand-overs, "
-                "%llu fault clears; driver restarts %llu\n",
+                "%llu fault clears; driver restarts %llu; \"silent\" faults from lost frames alone "
+                "%llu\n",
                 static_cast<unsigned long long>(o.commands),
                 static_cast<unsigned long long>(o.short_silences + o.long_silences),
                 static_cast<unsigned long long>(o.long_silences),
                 static_cast<unsigned long long>(o.hand_overs),
                 static_cast<unsigned long long>(o.fault_clears),
-                static_cast<unsigned long long>(r.driver_restarts));
+                static_cast<unsigned long long>(r.driver_restarts),
+                static_cast<unsigned long long>(r.spurious_silent_faults));
   out << line;
   std::snprintf(line, sizeof line, "invariants checked: %llu over %llu cycles\nviolations: %llu\n",
                 static_cast<unsigned long long>(r.evaluations),

@@ -1,6 +1,8 @@
 #include "runner/soak_segment.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace marsokhod::runner {
 namespace {
@@ -53,7 +55,8 @@ SegmentRunner::SegmentRunner(const SegmentPlan& plan, const Params& driver_param
       session_(rover_params, driver_params, sim_options(plan)),
       script_(derive_seed(plan.seed, kOperatorStream), driver_params),
       faults_(derive_seed(plan.seed, kFaultStream)),
-      checker_(driver_params, limits) {}
+      checker_(driver_params, limits),
+      missed_limit_(driver_params.safety.missed_responses_limit) {}
 
 std::vector<Violation> SegmentRunner::step(Recorder* recorder, bool first) {
   sim::SimulatedRover& rover = session_.rover();
@@ -82,7 +85,29 @@ std::vector<Violation> SegmentRunner::step(Recorder* recorder, bool first) {
   const sim::SimFaults& f = rover.faults();
   view.joint_encoder_fault = {f.lost_pulse_fraction[kFrontJoint] > 0.0,
                               f.lost_pulse_fraction[kRearJoint] > 0.0};
+  if (cycle.driver_running) count_spurious_faults(cycle.time_us, session_.status(), f);
   return checker_.check(view);
+}
+
+void SegmentRunner::count_spurious_faults(std::int64_t time_us,
+                                          const driver::DriverStatus& status,
+                                          const sim::SimFaults& faults) {
+  // A controller silenced within the last limit + 1 cycles explains its fault.
+  const std::int64_t recent_us =
+      session_.cycle_us() * (1 + missed_limit_);
+  for (std::size_t i = 0; i <= kMotorCount; ++i) {
+    if (faults.silent[i]) silenced_us_[i] = time_us;
+  }
+  for (const std::string& fault : status.faults) {
+    if (std::find(faults_before_.begin(), faults_before_.end(), fault) != faults_before_.end()) {
+      continue;
+    }
+    for (std::size_t i = 0; i <= kMotorCount; ++i) {
+      const bool explained = silenced_us_[i] && time_us - *silenced_us_[i] <= recent_us;
+      if (fault == "µ" + std::to_string(i) + " silent" && !explained) ++spurious_silent_;
+    }
+  }
+  faults_before_ = status.faults;
 }
 
 }  // namespace marsokhod::runner

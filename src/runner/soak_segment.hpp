@@ -4,7 +4,9 @@
 // step the same SegmentRunner, so they see the same cycles, bit for bit.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <string>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -47,14 +49,23 @@ class SegmentRunner {
   const OperatorScript& script() const { return script_; }
   const FaultSchedule& faults() const { return faults_; }
   const InvariantChecker& checker() const { return checker_; }
+  // "µN silent" faults latched while µN was answering in the simulator (lost frames alone).
+  std::uint64_t spurious_silent_faults() const { return spurious_silent_; }
 
  private:
+  void count_spurious_faults(std::int64_t time_us, const driver::DriverStatus& status,
+                             const sim::SimFaults& faults);
+
   SegmentPlan plan_;
   Session session_;
   OperatorScript script_;
   FaultSchedule faults_;
   InvariantChecker checker_;
+  int missed_limit_;
   std::vector<protocol::CanFrame> received_;
+  std::vector<std::string> faults_before_;
+  std::array<std::optional<std::int64_t>, kMotorCount + 1> silenced_us_{};  // last made silent
+  std::uint64_t spurious_silent_ = 0;
 };
 
 }  // namespace marsokhod::runner
