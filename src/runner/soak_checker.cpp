@@ -141,7 +141,7 @@ std::vector<Violation> InvariantChecker::check(const CycleView& c) {
   check_duties(c, duties, out);
   check_joints(c, out);
   check_operator_stop(c, duties, out);
-  check_supply(c, out);
+  check_supply(c, reported_supply_v(c), out);
   previous_ = duties;
   previous_running_ = true;
   ever_ran_ = true;
@@ -298,10 +298,25 @@ void InvariantChecker::check_restart(const CycleView& c, Report& out) {
   }
 }
 
-void InvariantChecker::check_supply(const CycleView& c, Report& out) {
-  const double threshold_v = params_->power.brownout_v + 0.5 - limits_.supply_margin_v;
-  const bool low = c.supply_v < threshold_v && missing_[kMotorCount] == 0;
-  low_supply_cycles_ = low ? low_supply_cycles_ + 1 : 0;
+std::optional<double> InvariantChecker::reported_supply_v(const CycleView& c) const {
+  std::optional<double> supply_v;
+  for (const protocol::CanFrame& frame : c.received) {
+    const protocol::DecodeResult r = protocol::decode(frame, context_);
+    if (!r.ok()) continue;
+    if (const auto* m = std::get_if<protocol::MeasurementResponse>(&r.message())) {
+      supply_v = params_->sensors.supply(m->vcc);  // the latest one counts, as in the driver
+    }
+  }
+  return supply_v;
+}
+
+void InvariantChecker::check_supply(const CycleView& c, std::optional<double> reported_v,
+                                    Report& out) {
+  // Without a reading this cycle the driver keeps its last one, and so does the count.
+  if (reported_v) {
+    const bool low = *reported_v < params_->power.brownout_v + 0.5;
+    low_supply_cycles_ = low ? low_supply_cycles_ + 1 : 0;
+  }
   if (low_supply_cycles_ < limits_.supply_cycles) return;
   ++evaluations_;
   const auto& w = c.status->warnings;
@@ -310,8 +325,8 @@ void InvariantChecker::check_supply(const CycleView& c, Report& out) {
   });
   if (!warned) {
     add(out, Invariant::kSupplyWarning, c,
-        format("supply %.3f V (the driver reads %.3f V) for %.0f cycles and no warning",
-               c.supply_v, c.status->supply_v, low_supply_cycles_));
+        format("µ8 reported %.3f V (true %.3f V) for %.0f readings and no warning",
+               reported_v.value_or(std::nan("")), c.supply_v, low_supply_cycles_));
   }
 }
 
