@@ -58,9 +58,11 @@ void print_summary(const runner::SoakResult& r, std::ostream& out) {
                 static_cast<unsigned long long>(r.driver_restarts),
                 static_cast<unsigned long long>(r.spurious_silent_faults));
   out << line;
-  std::snprintf(line, sizeof line, "invariants checked: %llu over %llu cycles\nviolations: %llu\n",
+  std::snprintf(line, sizeof line,
+                "invariants checked: %llu over %llu cycles; joints at most %.4f rad outside (5.3)\n"
+                "violations: %llu\n",
                 static_cast<unsigned long long>(r.evaluations),
-                static_cast<unsigned long long>(r.cycles),
+                static_cast<unsigned long long>(r.cycles), r.max_joint_excess_rad,
                 static_cast<unsigned long long>(r.total_violations()));
   out << line;
   for (std::size_t k = 0; k < runner::kInvariantCount; ++k) {

@@ -208,6 +208,7 @@ void InvariantChecker::check_joints(const CycleView& c, Report& out) {
     const double p = encoder_faulted_[k] ? c.status->motors[motors[k]].position_rad
                                          : c.joint_angle_rad[k];
     const double excess = std::max(bounds[k].first - p, p - bounds[k].second);
+    max_joint_excess_rad_ = std::max(max_joint_excess_rad_, excess);
     if (excess > limits_.joint_tolerance_rad) {
       add(out, Invariant::kJointBounds, c,
           std::string(k == 0 ? "front" : "rear") +

@@ -94,6 +94,8 @@ class InvariantChecker {
   std::vector<Violation> check(const CycleView& cycle);
   // Invariants evaluated so far (each applicable invariant once a cycle).
   std::uint64_t evaluations() const { return evaluations_; }
+  // The largest distance of a joint outside (5.3) seen so far (0 inside), as joint-bounds judges.
+  double max_joint_excess_rad() const { return max_joint_excess_rad_; }
 
  private:
   struct SentDuty {
@@ -120,6 +122,7 @@ class InvariantChecker {
   protocol::DecodeContext context_;
   std::int64_t cycle_us_;
   std::uint64_t evaluations_ = 0;
+  double max_joint_excess_rad_ = 0.0;
   bool previous_running_ = false;
   bool ever_ran_ = false;
   std::array<SentDuty, kMotorCount> previous_{};

@@ -151,6 +151,7 @@ TEST_F(CheckerTest, AJointOutsideTheBoundsIsCaughtOnTheTruthOrTheEstimate) {
   EXPECT_TRUE(cycle({}).empty());
   view_.joint_angle_rad = {-1.5, 2.55 + 0.0102};
   EXPECT_TRUE(has(cycle({}), Invariant::kJointBounds));
+  EXPECT_NEAR(checker_.max_joint_excess_rad(), 0.0102, 1e-9);
   // The rear encoder loses pulses: the driver cannot know the truth, its estimate must hold.
   view_.joint_encoder_fault = {false, true};
   status_.motors[kRearJoint].position_rad = 2.5;
