@@ -2,9 +2,11 @@
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 60
+SOAK_HOURS ?= 1
+SOAK_SEED ?= 1
 CMAKE_FLAGS ?= -DMARSOKHOD_WERROR=ON
 
-.PHONY: all deps configure build test bench fuzz run web clean
+.PHONY: all deps configure build test bench fuzz run web soak clean
 
 all: build
 
@@ -26,6 +28,12 @@ bench: build
 
 fuzz: deps
 	@FUZZ_SECONDS=$(FUZZ_SECONDS) bash scripts/fuzz.sh
+
+# Random operation with random faults, every invariant checked each cycle (RELIABILITY.md):
+# SOAK_HOURS simulated hours (about 6 min of wall time per hour). A violation exits 1 and leaves
+# its recording in soak-seed-SOAK_SEED/ (marsokhod replay soak-seed-SOAK_SEED).
+soak: build
+	$(BUILD_DIR)/src/app/marsokhod soak --hours $(SOAK_HOURS) --seed $(SOAK_SEED)
 
 # The console: npm packages from the lock file, then the Vite build into web/dist.
 web: deps

@@ -14,6 +14,7 @@
 #include "app/decode_command.hpp"
 #include "app/live_commands.hpp"
 #include "app/scenario_command.hpp"
+#include "app/soak_command.hpp"
 #include "config/calibration.hpp"
 #include "config/load_params.hpp"
 
@@ -155,6 +156,9 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
                             "voltage-drop: a scenario's --out folder with telemetry.csv")
       ->check(CLI::ExistingDirectory);
 
+  SoakArgs soak;
+  CLI::App* soak_cmd = add_soak_command(cli, soak);
+
   std::string replay_dir;
   CLI::App* replay_cmd = cli.add_subcommand(
       "replay", "re-run the driver over a recording and compare every request, bit for bit");
@@ -209,6 +213,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     scenario.progress = &err == &std::cerr && ::isatty(2) == 1;
     return run_scenario_command(scenario, loaded, out, err);
   }
+  if (soak_cmd->parsed()) return run_soak_command(soak, loaded, out, err);
   if (calibrate_cmd->parsed()) return run_calibrate_command(calibrate, loaded, in, out, err);
   if (replay_cmd->parsed()) return run_replay_command(replay_dir, params, out, err);
   if (run_cmd->parsed()) return run_live(run, loaded, out, err);

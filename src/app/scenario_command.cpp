@@ -14,6 +14,7 @@
 #include "runner/replay.hpp"
 #include "runner/scenario_runner.hpp"
 #include "runner/sweep.hpp"
+#include "runner/soak.hpp"
 
 namespace marsokhod::app {
 namespace {
@@ -210,14 +211,19 @@ int run_replay_command(const std::string& folder, const Params& params, std::ost
   }
   try {
     Params recorded = params;
+    Params nominal = params;  // what a soak's simulated rover was built from
     const auto config = std::filesystem::path(folder) / "config.toml";
     const auto calibration = std::filesystem::path(folder) / "calibration.toml";
+    if (std::filesystem::is_regular_file(config, ec)) nominal = config::load_params(config);
     if (std::filesystem::is_regular_file(calibration, ec)) {
       recorded = config::load_params(config, calibration);
     } else if (std::filesystem::is_regular_file(config, ec)) {
-      recorded = config::load_params(config);
+      recorded = nominal;
     }
-    const runner::ReplayResult r = runner::replay(folder, recorded);
+    // A soak's window starts in the middle of a driver's life: the soak is run again to the
+    // window's start for that driver (runner/soak.hpp).
+    auto start = runner::soak_window_driver(folder, recorded, nominal);
+    const runner::ReplayResult r = runner::replay(folder, recorded, std::move(start));
     out << "replayed " << r.cycles << " cycles, compared " << r.frames_compared << " requests: "
         << (r.identical ? "identical to the recording, bit for bit\n" : "DIFFERENT\n");
     if (!r.identical) out << r.first_difference << "\n";

@@ -43,12 +43,13 @@ std::string describe(const protocol::CanFrame& f) {
 
 }  // namespace
 
-ReplayResult replay(const std::filesystem::path& folder, const Params& params) {
+ReplayResult replay(const std::filesystem::path& folder, const Params& params,
+                    std::unique_ptr<driver::Driver> start) {
   const std::vector<protocol::CanFrame> frames = read_can_log(folder / "can.log");
   std::ifstream log(folder / "operator.jsonl");
   if (!log) throw std::runtime_error("cannot read " + (folder / "operator.jsonl").string());
   ReplayResult result;
-  std::unique_ptr<driver::Driver> driver;
+  std::unique_ptr<driver::Driver> driver = std::move(start);
   driver::RuntimeSettings runtime = driver::runtime_settings_from(params);
   std::size_t cursor = 0;
   std::string text;

@@ -6,9 +6,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "core/params.hpp"
+#include "driver/driver.hpp"
 
 namespace marsokhod::runner {
 
@@ -19,7 +21,10 @@ struct ReplayResult {
   std::string first_difference;  // empty when identical
 };
 
-// Throws std::runtime_error naming the file and line for a recording it cannot read.
-ReplayResult replay(const std::filesystem::path& folder, const Params& params);
+// Throws std::runtime_error naming the file and line for a recording it cannot read. `start`: the
+// driver as it was before the recording's first cycle, for a recording that begins in the middle
+// of a driver's life (a soak's window, soak.hpp); without it the first cycle starts a fresh one.
+ReplayResult replay(const std::filesystem::path& folder, const Params& params,
+                    std::unique_ptr<driver::Driver> start = nullptr);
 
 }  // namespace marsokhod::runner

@@ -51,6 +51,9 @@ class Session {
   // The driver's status (the last one before a brown-out while it is down).
   const driver::DriverStatus& status() const { return last_status_; }
   driver::Driver* driver() { return driver_.get(); }
+  // Hands the driver over as it stands (a replay continues from it, soak.hpp); the session is
+  // not stepped any more afterwards. nullptr while the driver is down.
+  std::unique_ptr<driver::Driver> take_driver() { return std::move(driver_); }
   // Run-time settings for the driver now and after any restart; throws std::invalid_argument.
   void set_runtime(const driver::RuntimeSettings& settings);
   const driver::RuntimeSettings& runtime() const { return runtime_; }
