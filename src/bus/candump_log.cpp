@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 
 namespace marsokhod::bus {
@@ -29,8 +30,8 @@ std::optional<std::string> parse_timestamp(std::string_view field, LoggedFrame& 
   const char* begin = out.timestamp.data();
   const char* end = begin + out.timestamp.size();
   const auto [ptr, ec] = std::from_chars(begin, end, out.time_s);
-  if (ec != std::errc() || ptr != end || out.time_s < 0.0) {
-    return "timestamp '" + out.timestamp + "' is not a non-negative number of seconds";
+  if (ec != std::errc() || ptr != end || !std::isfinite(out.time_s) || out.time_s < 0.0) {
+    return "timestamp '" + out.timestamp + "' is not a finite, non-negative number of seconds";
   }
   return std::nullopt;
 }

@@ -74,7 +74,15 @@ TEST(CandumpLog, RejectsMalformedLines) {
   EXPECT_EQ(error_of("can0 180#00"), "expected '(time) interface ID#DATA'");
   EXPECT_EQ(error_of("1.0 can0 180#00"),
             "expected a timestamp in parentheses, e.g. (1436509052.249713), got '1.0'");
-  EXPECT_EQ(error_of("(abc) can0 180#00"), "timestamp 'abc' is not a non-negative number of seconds");
+  EXPECT_EQ(error_of("(abc) can0 180#00"),
+            "timestamp 'abc' is not a finite, non-negative number of seconds");
+  // from_chars reads these; a trace's time never is one.
+  EXPECT_EQ(error_of("(nan) can0 180#00"),
+            "timestamp 'nan' is not a finite, non-negative number of seconds");
+  EXPECT_EQ(error_of("(inf) can0 180#00"),
+            "timestamp 'inf' is not a finite, non-negative number of seconds");
+  EXPECT_EQ(error_of("(1e999) can0 180#00"),
+            "timestamp '1e999' is not a finite, non-negative number of seconds");
   EXPECT_EQ(error_of("(1.0) can0 18000"), "frame '18000' has no '#' between identifier and data");
   EXPECT_EQ(error_of("(1.0) can0 18#00"),
             "identifier '18' must have 3 hex digits (standard) or 8 (extended)");
