@@ -1,7 +1,7 @@
 # marsokhod — the two commands: `make test` and (once the simulator lands) `make run`.
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
-FUZZ_SECONDS ?= 60
+FUZZ_SECONDS ?= 150
 CMAKE_FLAGS ?= -DMARSOKHOD_WERROR=ON
 
 .PHONY: all deps configure build test bench fuzz run web clean
