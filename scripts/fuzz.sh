@@ -68,8 +68,8 @@ run_fuzzer "${target}" "${build}/fuzz/protocol/${target}" "${protocol_seconds}" 
 link_corpus="${build}/corpus/${link_target}"
 mkdir -p "${link_corpus}"
 link_seed() { printf '%s' "$2" >"${link_corpus}/seed-$1"; }
-link_seed gamepad '{"type":"gamepad","axes":[0,-1,0.5,1],"buttons":[false,true,false,false,false,false,false,false,false,false,false,false,true,false,false,false,false]}'
-link_seed targets '{"type":"targets","v1":2.25,"v2":-1.5,"v4":0,"v6":0.5,"v7":-0.5,"gait":"rolking-extended-base","gait_speed":-1,"calibration_mode":false}'
+link_seed gamepad '{"type":"gamepad","seq":1,"sent_ms":1718040000123.5,"axes":[0,-1,0.5,1],"buttons":[false,true,false,false,false,false,false,false,false,false,false,false,true,false,false,false,false]}'
+link_seed targets '{"type":"targets","seq":9007199254740991,"sent_ms":0,"v1":2.25,"v2":-1.5,"v4":0,"v6":0.5,"v7":-0.5,"gait":"rolking-extended-base","gait_speed":-1,"calibration_mode":false}'
 link_seed configure '{"type":"configure","max_drop_v":1.5,"load_distribution":"v","behaviours":{"power_management":true,"slant_response":false,"contract_on_turn":true,"axle_placement":false},"speed_scale":0.5}'
 link_seed stop '{"type":"stop"}'
 link_seed clear-faults '{"type":"clear_faults"}'
