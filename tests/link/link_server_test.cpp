@@ -109,7 +109,7 @@ TEST_F(LinkServerTest, RefusesAWrongOrMissingTokenWith401ThenBacksOff) {
   EXPECT_EQ(wrong.error(), testing::websocket::error::upgrade_declined);
   EXPECT_EQ(wrong.handshake_response().result_int(), 401);
   // The same address again, even with the right token: refused unseen until the back-off ends.
-  for (const std::string& token : {"", kToken}) {
+  for (const std::string token : {"", kToken}) {
     TestClient next(server_->port(), "/ws", testing::Headers{{"Authorization", "Bearer " + token}});
     EXPECT_FALSE(next.open()) << token;
     EXPECT_EQ(next.handshake_response().result_int(), 429) << token;
