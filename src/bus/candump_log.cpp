@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace marsokhod::bus {
 namespace {
@@ -124,7 +125,11 @@ std::string format_candump_line(const LoggedFrame& logged) {
     std::snprintf(id, sizeof id, "%03X", static_cast<unsigned>(logged.frame.id));
   }
   std::string line = "(" + logged.timestamp + ") " + logged.interface + " " + id + "#";
-  if (logged.remote) return line + "R";
+  // can-utils writes a remote frame's length after the R ("123#R6") when it is not 0; the parser
+  // reads it, so dropping it would change the frame (the candump fuzzer found this).
+  if (logged.remote) {
+    return line + "R" + (logged.frame.dlc > 0 ? std::to_string(logged.frame.dlc) : "");
+  }
   static constexpr char kHex[] = "0123456789ABCDEF";
   for (std::size_t i = 0; i < logged.frame.dlc && i < 8; ++i) {
     line += kHex[logged.frame.data[i] >> 4];

@@ -95,6 +95,17 @@ TEST(CandumpLog, RejectsMalformedLines) {
   EXPECT_EQ(error_of("(1.0) can0 180##100"), "CAN FD frames (##) are not supported");
 }
 
+TEST(CandumpLog, ARemoteFramesLengthSurvivesTheRoundTrip) {
+  const auto parsed = parse_candump_line("(1.5) can0 090#R6");
+  const auto* logged = std::get_if<LoggedFrame>(&parsed);
+  ASSERT_NE(logged, nullptr);
+  EXPECT_TRUE(logged->remote);
+  EXPECT_EQ(logged->frame.dlc, 6);
+  EXPECT_EQ(format_candump_line(*logged), "(1.5) can0 090#R6");
+  EXPECT_EQ(format_candump_line(std::get<LoggedFrame>(parse_candump_line("(1.5) can0 090#R"))),
+            "(1.5) can0 090#R");
+}
+
 TEST(CandumpLog, FormatParseRoundTrip) {
   std::mt19937 rng(20081);
   for (int n = 0; n < 2000; ++n) {
