@@ -1,7 +1,7 @@
 # marsokhod — the two commands: `make test` and (once the simulator lands) `make run`.
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
-FUZZ_SECONDS ?= 60
+FUZZ_SECONDS ?= 150
 SOAK_HOURS ?= 1
 SOAK_SEED ?= 1
 CMAKE_FLAGS ?= -DMARSOKHOD_WERROR=ON

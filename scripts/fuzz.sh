@@ -1,19 +1,26 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang in build-fuzz/ and runs them for ${FUZZ_SECONDS:-60}
-# seconds in all: half for the CAN protocol's decoder (protocol_decode_fuzzer), half for the
-# operator console's message parser (link_operator_message_fuzzer). Exits non-zero when a fuzzer
-# finds a crash; the crashing input is kept in build-fuzz/artifacts/ — replay it with the fuzzer
-# binary and the file as argument.
+# Builds the libFuzzer targets with clang in build-fuzz/ and runs the five of them for
+# ${FUZZ_SECONDS:-150} seconds in all, split evenly, each at least 20 s: the CAN protocol's decoder
+# (protocol_decode_fuzzer), the operator console's message parser (link_operator_message_fuzzer),
+# the socketcand protocol (bus_socketcand_fuzzer), the candump log parser (bus_candump_fuzzer)
+# and the scenario loader (runner_scenario_fuzzer). Exits non-zero when a fuzzer finds a crash;
+# the crashing input is kept in build-fuzz/artifacts/ — replay it with the fuzzer binary and the
+# file as argument.
 set -euo pipefail
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${repo}/build-fuzz"
-seconds="${FUZZ_SECONDS:-60}"
+seconds="${FUZZ_SECONDS:-150}"
 target=protocol_decode_fuzzer
 link_target=link_operator_message_fuzzer
-# Half each; the protocol fuzzer gets the odd second, and each at least one.
-link_seconds=$(( seconds / 2 > 0 ? seconds / 2 : 1 ))
-protocol_seconds=$(( seconds - seconds / 2 > 0 ? seconds - seconds / 2 : 1 ))
+socketcand_target=bus_socketcand_fuzzer
+candump_target=bus_candump_fuzzer
+scenario_target=runner_scenario_fuzzer
+# An even share each, at least 20 s: less finds little beyond the seeds.
+share=$(( seconds / 5 ))
+share=$(( share < 20 ? 20 : share ))
+protocol_seconds=${share}
+link_seconds=${share}
 
 if ! command -v clang++ >/dev/null 2>&1; then
   echo "fuzz: skipped, clang++ not found"
@@ -23,7 +30,8 @@ fi
 CC=clang CXX=clang++ cmake -S "${repo}" -B "${build}" -G Ninja \
   -DMARSOKHOD_FUZZ=ON -DMARSOKHOD_BENCHMARKS=OFF \
   -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined"
-cmake --build "${build}" --target "${target}" "${link_target}" -j "${FUZZ_JOBS:-$(nproc)}"
+cmake --build "${build}" --target "${target}" "${link_target}" "${socketcand_target}" \
+  "${candump_target}" "${scenario_target}" -j "${FUZZ_JOBS:-$(nproc)}"
 
 # Seeds, one legal frame each: 2 bytes id (big-endian), 1 byte DLC, the data.
 corpus="${build}/corpus/${target}"
@@ -60,8 +68,8 @@ run_fuzzer "${target}" "${build}/fuzz/protocol/${target}" "${protocol_seconds}" 
 link_corpus="${build}/corpus/${link_target}"
 mkdir -p "${link_corpus}"
 link_seed() { printf '%s' "$2" >"${link_corpus}/seed-$1"; }
-link_seed gamepad '{"type":"gamepad","axes":[0,-1,0.5,1],"buttons":[false,true,false,false,false,false,false,false,false,false,false,false,true,false,false,false,false]}'
-link_seed targets '{"type":"targets","v1":2.25,"v2":-1.5,"v4":0,"v6":0.5,"v7":-0.5,"gait":"rolking-extended-base","gait_speed":-1,"calibration_mode":false}'
+link_seed gamepad '{"type":"gamepad","seq":1,"sent_ms":1718040000123.5,"axes":[0,-1,0.5,1],"buttons":[false,true,false,false,false,false,false,false,false,false,false,false,true,false,false,false,false]}'
+link_seed targets '{"type":"targets","seq":9007199254740991,"sent_ms":0,"v1":2.25,"v2":-1.5,"v4":0,"v6":0.5,"v7":-0.5,"gait":"rolking-extended-base","gait_speed":-1,"calibration_mode":false}'
 link_seed configure '{"type":"configure","max_drop_v":1.5,"load_distribution":"v","behaviours":{"power_management":true,"slant_response":false,"contract_on_turn":true,"axle_placement":false},"speed_scale":0.5}'
 link_seed stop '{"type":"stop"}'
 link_seed clear-faults '{"type":"clear_faults"}'
@@ -74,3 +82,38 @@ link_seed overflow '{"type":"targets","v1":1e999}'
 
 run_fuzzer "${link_target}" "${build}/fuzz/link/${link_target}" "${link_seconds}" \
   "${link_corpus}" -dict="${repo}/fuzz/link/operator_message.dict" -max_len=4200
+
+# The socketcand protocol: byte 0 is where the stream is cut in two, then the stream.
+sc_corpus="${build}/corpus/${socketcand_target}"
+mkdir -p "${sc_corpus}"
+sc_seed() { printf '%b' "$2" >"${sc_corpus}/seed-$1"; }
+sc_seed handshake '\x05< open can0 >< rawmode >< send 180 3 3 1 2c >'
+sc_seed frame '\x00< frame 188 1436509052.249713 12340001000202FB >< echo >'
+sc_seed extended '\x09< send 1AAAAAAA 0 >< error it\x1b[2J >'
+sc_seed browser-post '\x10POST / HTTP/1.1\r\nHost: 127.0.0.1:29536\r\n\r\n< open can0 >'
+sc_seed broken '\x03< send 180 1 01< echo >junk< >'
+run_fuzzer "${socketcand_target}" "${build}/fuzz/bus/${socketcand_target}" "${share}" \
+  "${sc_corpus}" -max_len=1024
+
+# candump log lines.
+cd_corpus="${build}/corpus/${candump_target}"
+mkdir -p "${cd_corpus}"
+cd_seed() { printf '%s' "$2" >"${cd_corpus}/seed-$1"; }
+cd_seed frame '(1436509052.249713) can0 188#12340001000202FB'
+cd_seed python-can '(1.000000) vcan0 180#03012C R'
+cd_seed extended '(0.5) can1 1AAAAAAA#'
+cd_seed remote '(2.25) can0 183#R'
+cd_seed nan '(nan) can0 180#00'
+run_fuzzer "${candump_target}" "${build}/fuzz/bus/${candump_target}" "${share}" \
+  "${cd_corpus}" -max_len=256
+
+# Scenario files: two of the shipped ones and a few near misses.
+sn_corpus="${build}/corpus/${scenario_target}"
+mkdir -p "${sn_corpus}"
+cp "${repo}/scenarios/link-loss.toml" "${repo}/scenarios/straight-and-spin.toml" "${sn_corpus}/"
+sn_seed() { printf '%b' "$2" >"${sn_corpus}/seed-$1"; }
+sn_seed faults 'duration_s = 5.0\n[[fault]]\nt = 1.0\nframe_loss = 0.1\nlost_pulses = { motor = 2, fraction = 0.3 }\n'
+sn_seed nan '[[input]]\nt = nan\ntargets = { v1 = inf }\n'
+sn_seed phases '[[phase]]\nname = "a"\nfrom_s = 0.0\nto_s = 1.0\n[[check]]\nmetric = "a.distance_m"\nmin = 0.1\n'
+run_fuzzer "${scenario_target}" "${build}/fuzz/runner/${scenario_target}" "${share}" \
+  "${sn_corpus}" -max_len=4096

@@ -53,14 +53,22 @@ int main() {
     }
   });
   while (!driving) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  link::testing::TestClient client(server.port(), "/ws?token=" + options.token);
+  link::testing::TestClient client(server.port(), "/ws",
+                                  {{"Authorization", "Bearer " + options.token}});
+  // Readings carry their place in the stream and their send time (docs/operator-protocol.md).
+  std::uint64_t seq = 0;
+  const auto targets = [&seq](double v1) {
+    const double sent_ms =
+        std::chrono::duration<double, std::milli>(Clock::now().time_since_epoch()).count();
+    return nlohmann::json{{"type", "targets"}, {"seq", ++seq}, {"sent_ms", sent_ms}, {"v1", v1}};
+  };
   client.send(nlohmann::json{{"type", "take_control"}});
   std::vector<double> latency_ms;
   for (int trial = 0; trial < 30; ++trial) {
     // Rest (the console keeps sending zero targets), then a phase offset that walks the cycle.
     const auto rest_until = Clock::now() + std::chrono::milliseconds(1200);
     while (Clock::now() < rest_until) {
-      client.send(nlohmann::json{{"type", "targets"}, {"v1", 0.0}});
+      client.send(targets(0.0));
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     std::this_thread::sleep_for(std::chrono::microseconds(1000 + 1733 * trial % 15600));
@@ -70,7 +78,7 @@ int main() {
       first_frame.reset();
     }
     const auto sent = Clock::now();
-    client.send(nlohmann::json{{"type", "targets"}, {"v1", 1.0}});
+    client.send(targets(1.0));
     for (int wait = 0; wait < 200; ++wait) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
       const std::lock_guard lock(mutex);

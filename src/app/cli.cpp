@@ -23,6 +23,17 @@ namespace {
 
 constexpr int kUsageError = 2;
 
+// CLI11 reads "-1" into an unsigned seed as 2^64 − 1; a negative seed is a mistake, say so.
+const CLI::Validator kSeed(
+    [](std::string& text) -> std::string {
+      const auto first = text.find_first_not_of(" \t");
+      if (first != std::string::npos && text[first] == '-') {
+        return "--seed: " + text + " is negative; a seed is an integer ≥ 0";
+      }
+      return {};
+    },
+    "INTEGER ≥ 0");
+
 struct DecodeArgs {
   std::string file;
   bool json = false;
@@ -81,7 +92,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
       "scenario", "run a scenario headless, faster than real time, and check its results");
   scenario_cmd->add_option("NAME", scenario.name, "a shipped scenario's name, or a scenario file");
   std::uint64_t seed = 0;
-  CLI::Option* seed_option = scenario_cmd->add_option("--seed", seed, "the simulator's seed");
+  CLI::Option* seed_option = scenario_cmd->add_option("--seed", seed, "the simulator's seed")->check(kSeed);
   scenario_cmd->add_option("--out", scenario.out,
                            "write can.log, operator.jsonl, telemetry.csv and plots here");
   scenario_cmd->add_flag("--json", scenario.json, "print one JSON object");
@@ -98,7 +109,11 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
       "run", "the simulated rover and the driver in real time, with the console (the default)");
   auto add_console = [](CLI::App* cmd, ConsoleArgs& c) {
     cmd->add_option("--listen", c.listen, "the console's ADDR:PORT (default: [console] listen)");
-    cmd->add_option("--token", c.token, "the console's access token (default: [console] token, or generated)");
+    cmd->add_option("--token", c.token,
+                    "the console's access token (others see it in ps: prefer --token-file or "
+                    "$MARSOKHOD_TOKEN; default: [console] token, or generated)");
+    cmd->add_option("--token-file", c.token_file,
+                    "read the console's access token from FILE (mode 0600)");
     cmd->add_option("--web", c.web, "the console's build folder (default web/dist)");
     cmd->add_flag("--no-console", c.no_console, "no HTTP/WebSocket server");
     cmd->add_option("--status-rate", c.status_rate_hz, "status messages per second")
@@ -107,7 +122,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   add_console(run_cmd, run.console);
   run_cmd->add_option("--scenario", run.scenario, "terrain and faults from a scenario file")
       ->check(CLI::ExistingFile);
-  run_cmd->add_option("--seed", run.seed, "the simulator's seed");
+  run_cmd->add_option("--seed", run.seed, "the simulator's seed")->check(kSeed);
   run_cmd->add_option("--duration", run.duration_s, "stop after this many seconds (default: on Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
   run_cmd->add_option("--record", run.record, "write can.log, operator.jsonl and telemetry.csv here");
@@ -119,7 +134,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   sim_cmd->add_option("--channel", sim.channel, "the bus' channel name (default can0)");
   sim_cmd->add_option("--scenario", sim.scenario, "terrain and faults from a scenario file")
       ->check(CLI::ExistingFile);
-  sim_cmd->add_option("--seed", sim.seed, "the simulator's seed");
+  sim_cmd->add_option("--seed", sim.seed, "the simulator's seed")->check(kSeed);
   sim_cmd->add_option("--duration", sim.duration_s, "stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
 
@@ -146,7 +161,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   calibrate_cmd->add_flag("--force", calibrate.force,
                           "update an existing calibration file (other procedures' values are kept)");
   calibrate_cmd->add_option("--plot", calibrate.plot, "write the measured data and plots here");
-  calibrate_cmd->add_option("--seed", calibrate.seed, "the simulated unit (--sim)");
+  calibrate_cmd->add_option("--seed", calibrate.seed, "the simulated unit (--sim)")->check(kSeed);
   calibrate_cmd->add_option("--duration", calibrate.duration_s,
                             "how long to measure [s] (motor-scale, response, voltage)")
       ->check(CLI::PositiveNumber);

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstdio>
 #include <memory>
 #include <mutex>
@@ -11,6 +12,7 @@
 
 #include "bus/socketcand_server.hpp"
 #include "bus/transport.hpp"
+#include "link/access_token.hpp"
 #include "link/link_server.hpp"
 #include "link/operator_message.hpp"
 #include "link/status_json.hpp"
@@ -61,6 +63,14 @@ void print_status_line(double t, const driver::DriverStatus& s, std::ostream& ou
   out << line << std::flush;
 }
 
+// --token, else --token-file, else $MARSOKHOD_TOKEN, else [console] token; empty: generated.
+std::string console_token(const ConsoleArgs& args, const ConsoleParams& config) {
+  if (!args.token.empty()) return args.token;
+  if (!args.token_file.empty()) return link::read_token_file(args.token_file);
+  if (const char* env = std::getenv("MARSOKHOD_TOKEN"); env != nullptr && *env != '\0') return env;
+  return config.token;
+}
+
 // The console's commands of one cycle: the newest operator input (a stop wins the cycle) and
 // configuration changes.
 class ConsoleLink {
@@ -71,7 +81,9 @@ class ConsoleLink {
     const ConsoleParams& c = params.console;
     options.listen = link::parse_listen_address(args.listen.empty() ? c.listen : args.listen);
     options.static_dir = find_web_dist(args.web);
-    options.token = args.token.empty() ? c.token : args.token;
+    options.token = console_token(args, c);
+    options.allowed_hosts = c.allowed_hosts;
+    options.allowed_origins = c.allowed_origins;
     options.status_period_s = 1.0 / (args.status_rate_hz > 0.0 ? args.status_rate_hz : c.status_rate_hz);
     server_ = std::make_unique<link::LinkServer>(params, options);
     server_->start();
@@ -91,8 +103,9 @@ class ConsoleLink {
         changed = true;
         continue;
       }
-      const auto next = link::operator_input(command.message);
+      auto next = link::operator_input(command.message);
       if (!next) continue;
+      if (next->stop) next->stop_reason = command.reason;  // shown until the operator re-arms
       if (input && input->stop && !next->stop) continue;  // a stop holds for its cycle
       input = next;
     }

@@ -18,7 +18,8 @@ namespace marsokhod::app {
 // Empty or zero: the configuration's [console] values.
 struct ConsoleArgs {
   std::string listen;
-  std::string token;
+  std::string token;            // visible to every user in `ps`: prefer token_file or the environment
+  std::string token_file;       // the token in a file only its owner may read (mode 0600)
   std::string web;              // the console's build; empty: web/dist of the working folder or source tree
   bool no_console = false;
   double status_rate_hz = 0.0;

@@ -2,7 +2,9 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace marsokhod::bus {
 namespace {
@@ -29,8 +31,8 @@ std::optional<std::string> parse_timestamp(std::string_view field, LoggedFrame& 
   const char* begin = out.timestamp.data();
   const char* end = begin + out.timestamp.size();
   const auto [ptr, ec] = std::from_chars(begin, end, out.time_s);
-  if (ec != std::errc() || ptr != end || out.time_s < 0.0) {
-    return "timestamp '" + out.timestamp + "' is not a non-negative number of seconds";
+  if (ec != std::errc() || ptr != end || !std::isfinite(out.time_s) || out.time_s < 0.0) {
+    return "timestamp '" + out.timestamp + "' is not a finite, non-negative number of seconds";
   }
   return std::nullopt;
 }
@@ -123,7 +125,11 @@ std::string format_candump_line(const LoggedFrame& logged) {
     std::snprintf(id, sizeof id, "%03X", static_cast<unsigned>(logged.frame.id));
   }
   std::string line = "(" + logged.timestamp + ") " + logged.interface + " " + id + "#";
-  if (logged.remote) return line + "R";
+  // can-utils writes a remote frame's length after the R ("123#R6") when it is not 0; the parser
+  // reads it, so dropping it would change the frame (the candump fuzzer found this).
+  if (logged.remote) {
+    return line + "R" + (logged.frame.dlc > 0 ? std::to_string(logged.frame.dlc) : "");
+  }
   static constexpr char kHex[] = "0123456789ABCDEF";
   for (std::size_t i = 0; i < logged.frame.dlc && i < 8; ++i) {
     line += kHex[logged.frame.data[i] >> 4];

@@ -24,8 +24,9 @@ std::string millis(std::chrono::milliseconds duration) {
 
 // What a message is, for "expected X, got Y" errors: the raw text, or the framing problem.
 std::string describe(const socketcand::MessageSplitter::Item& item) {
-  if (const auto* text = std::get_if<std::string>(&item)) return "'" + *text + "'";
-  return "unparseable data (" + std::get<socketcand::ParseError>(item).reason + ")";
+  // The server's words, escaped: a hostile one must not put control sequences on our terminal.
+  if (const auto* text = std::get_if<std::string>(&item)) return "'" + socketcand::escaped(*text) + "'";
+  return "unparseable data (" + socketcand::escaped(std::get<socketcand::ParseError>(item).reason) + ")";
 }
 
 }  // namespace
@@ -151,7 +152,8 @@ struct SocketcandClient::Impl {
       if (const auto* message = std::get_if<socketcand::Message>(&parsed)) {
         if (std::holds_alternative<Expected>(*message)) return;
         if (const auto* error = std::get_if<socketcand::Error>(message)) {
-          fail("socketcand at " + endpoint + " refused " + step + ": " + error->text);
+          fail("socketcand at " + endpoint + " refused " + step + ": " +
+               socketcand::escaped(error->text));
         }
       }
     }
@@ -190,7 +192,7 @@ void SocketcandClient::Impl::take(const socketcand::MessageSplitter::Item& item,
     ++counters.frames_received;
   } else if (const auto* error = std::get_if<socketcand::Error>(message)) {
     ++counters.peer_errors;
-    last_peer_error = error->text;
+    last_peer_error = socketcand::escaped(error->text);
   } else if (!std::holds_alternative<socketcand::Echo>(*message)) {
     ++counters.ignored;  // fdframe, rtr, stat, …: valid socketcand, not classic data frames
   }

@@ -181,6 +181,17 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // Error texts and quoted fragments end up inside `< … >` or a log line: nothing may close the
 // message early, and python-can decodes what it receives as ASCII (anything else raises).
+// "GET /path HTTP/1.1", "POST / HTTP/1.0", …: a method word in capitals, then a space.
+bool looks_like_http_request(std::string_view text) {
+  static constexpr std::string_view kMethods[] = {"GET ",    "POST ",    "PUT ",   "HEAD ",
+                                                  "DELETE ", "OPTIONS ", "PATCH ", "CONNECT ",
+                                                  "TRACE "};
+  for (const std::string_view method : kMethods) {
+    if (text.substr(0, method.size()) == method) return true;
+  }
+  return text.find(" HTTP/1.") != std::string_view::npos;
+}
+
 std::string printable(std::string_view text) {
   std::string out(text);
   for (char& c : out) {
@@ -310,10 +321,27 @@ std::optional<MessageSplitter::Item> MessageSplitter::next() {
 std::optional<MessageSplitter::Item> MessageSplitter::skip_stray_text() {
   const auto open = buffer_.find('<', begin_);
   const std::size_t end = open == std::string::npos ? buffer_.size() : open;
-  const std::string stray = printable(
-      trim(std::string_view(buffer_).substr(begin_, std::min<std::size_t>(end - begin_, 40))));
+  const std::string_view raw = std::string_view(buffer_).substr(begin_, end - begin_);
+  const std::string stray = printable(trim(raw.substr(0, std::min<std::size_t>(raw.size(), 40))));
+  const bool http = looks_like_http_request(raw);
   begin_ = end;
-  return Item{ParseError{"unexpected text '" + stray + "' between messages"}};
+  return Item{ParseError{"unexpected text '" + stray + "' between messages", true, http}};
+}
+
+std::string escaped(std::string_view text) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte <= 0x7E && c != '\\') {
+      out += c;
+    } else {
+      out += "\\x";
+      out += kHex[byte >> 4U];
+      out += kHex[byte & 0xFU];
+    }
+  }
+  return out;
 }
 
 }  // namespace marsokhod::bus::socketcand

@@ -11,8 +11,8 @@
 //                                                  (python-can writes "< send 180 3 3 1 2c >")
 //   either            < echo >, < error TEXT >
 //
-// Messages carry no separator between them; bytes outside `< … >` are skipped, as socketcand
-// does. Pure: no I/O, never throws on input (ParseError says what was wrong).
+// Messages carry no separator between them; bytes outside `< … >` are reported (and skipped, as
+// socketcand does); the server closes the connection for them before a successful open. Pure: no I/O, never throws on input (ParseError says what was wrong).
 #pragma once
 
 #include <cstddef>
@@ -80,7 +80,15 @@ using Message = std::variant<Hi, Ok, Echo, RawMode, Open, Error, Send, Frame, Un
 
 struct ParseError {
   std::string reason;  // e.g. "send: DLC 9 exceeds 8 (classic CAN)"
+  // Set by MessageSplitter for bytes outside `< … >`, and when those start like an HTTP request
+  // line ("POST / HTTP/1.1"): a web page posting to the server (see SocketcandServer).
+  bool outside_message = false;
+  bool http_request = false;
 };
+
+// The text with every byte outside printable ASCII (and the backslash) as \xHH: safe to quote a
+// peer's words in an error message or on a terminal.
+std::string escaped(std::string_view text);
 
 // Parses one complete message including its brackets, e.g. "< send 180 3 03 01 2C >".
 std::variant<Message, ParseError> parse_message(std::string_view text);

@@ -4,6 +4,7 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
 #include <condition_variable>
+#include <cstdio>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -162,7 +163,19 @@ void SocketcandServer::start() {
   impl_->listen();
   impl_->running = true;
   impl_->accept();
-  impl_->thread = std::thread([impl = impl_.get()] { impl->io.run(); });
+  impl_->thread = std::thread([impl = impl_.get()] {
+    for (;;) {
+      try {
+        impl->io.run();
+        return;
+      } catch (const std::exception& error) {
+        // One failed handler must not take the simulated bus down with it (sessions catch
+        // their own; this is for anything else): report it and serve on.
+        std::fprintf(stderr, "socketcand server: a handler failed (%s); serving on\n",
+                     error.what());
+      }
+    }
+  });
 }
 
 void SocketcandServer::stop() {

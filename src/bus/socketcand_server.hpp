@@ -5,7 +5,11 @@
 // `< error … >` and the connection is closed (as socketcand does); `< rawmode >` → `< ok >`; then
 // `< send … >` frames go to on_frame (and, as on a real bus, to the other clients), and frames
 // given to broadcast() go to every client in raw mode as `< frame … >`. Malformed messages are
-// answered with `< error REASON >` and counted; they never end the connection.
+// answered with `< error REASON >` and counted; they never end the connection — except bytes
+// outside `< … >` before a successful open, and an HTTP request line at any time, which close it
+// at once: any web page can make the operator's browser POST to 127.0.0.1:29536, and its body's
+// `< open >< send … >` must never reach the bus. An opened connection that neither sends nor
+// takes anything for idle_timeout is closed too, so that idle clients cannot hold every slot.
 //
 // The io_context runs on the server's own thread between start() and stop(). Bounded: clients
 // (max_clients), the time to open a channel (handshake_timeout), every message
@@ -26,7 +30,8 @@ namespace marsokhod::bus {
 
 struct ServerCounters {
   std::uint64_t clients_accepted = 0;
-  std::uint64_t clients_refused = 0;      // too many clients, wrong channel, handshake timeout
+  std::uint64_t clients_refused = 0;      // too many clients, wrong channel, handshake timeout,
+                                          // stray bytes before open, HTTP, idle
   std::uint64_t frames_from_clients = 0;  // `< send … >` passed to on_frame
   std::uint64_t frames_broadcast = 0;     // broadcast() calls while running
   std::uint64_t malformed_messages = 0;   // client messages answered with `< error … >`
@@ -42,6 +47,8 @@ class SocketcandServer {
     std::string channel = kSocketcandDefaultChannel;
     std::size_t max_clients = 8;
     std::chrono::milliseconds handshake_timeout{10000};  // connect → successful open
+    // After open: no byte read and no write completed for this long ⇒ closed.
+    std::chrono::milliseconds idle_timeout{60000};
     // python-can reads each handshake reply with a single recv() and compares it exactly, so a
     // frame glued to the rawmode `< ok >` would break its handshake. A client receives frames
     // once it sends its first message after raw mode, or after this grace.

@@ -1,6 +1,7 @@
 #include "bus/socketcand_session.hpp"
 
 #include <boost/asio/write.hpp>
+#include <cstdio>
 #include <exception>
 #include <variant>
 
@@ -26,7 +27,10 @@ std::string millis(std::chrono::milliseconds duration) {
 }  // namespace
 
 SocketcandSession::SocketcandSession(SessionHost& host, asio::ip::tcp::socket socket)
-    : host_(host), socket_(std::move(socket)), timer_(socket_.get_executor()) {}
+    : host_(host),
+      socket_(std::move(socket)),
+      timer_(socket_.get_executor()),
+      idle_timer_(socket_.get_executor()) {}
 
 void SocketcandSession::start() {
   deliver(socketcand::format_message(socketcand::Hi{}), false);
@@ -49,19 +53,35 @@ void SocketcandSession::read() {
           self->close();  // the client left (or the connection broke): nothing to answer
           return;
         }
-        self->on_read(size);
+        try {
+          self->on_read(size);
+        } catch (const std::exception& failure) {
+          // This client's handler failed: it ends, the server and the other clients go on.
+          std::fprintf(stderr, "socketcand server: closing a client: %s\n", failure.what());
+          self->close();
+        }
       });
 }
 
 void SocketcandSession::on_read(std::size_t size) {
+  touch();
   splitter_.append(std::string_view(read_buffer_.data(), size));
   while (state_ != State::kClosing && !closed_) {
     const auto item = splitter_.next();
     if (!item) break;
     if (const auto* text = std::get_if<std::string>(&*item)) {
       handle(*text);
+      continue;
+    }
+    const auto& error = std::get<socketcand::ParseError>(*item);
+    if (error.http_request || (error.outside_message && state_ == State::kNoBus)) {
+      // A web page's request (or something else that is not socketcand): nothing after it may
+      // reach the bus.
+      host_.count(&ServerCounters::clients_refused);
+      refuse(error.http_request ? "an HTTP request is not socketcand; closing"
+                                : error.reason + " before 'open': closing");
     } else {
-      reject(std::get<socketcand::ParseError>(*item).reason);
+      reject(error.reason);
     }
   }
   if (state_ != State::kClosing && !closed_) read();
@@ -100,6 +120,7 @@ void SocketcandSession::handle_no_bus(const Message& message) {
   } else {
     timer_.cancel();
     state_ = State::kBus;
+    touch();
     deliver(socketcand::format_message(socketcand::Ok{}), false);
   }
 }
@@ -193,17 +214,45 @@ void SocketcandSession::write_next() {
         if (error) {
           self->close();
         } else if (!self->queue_.empty()) {
+          self->touch();
           self->write_next();
         } else {
           self->writing_ = false;
+          self->touch();
           if (self->state_ == State::kClosing) self->close();
         }
       });
 }
 
+void SocketcandSession::touch() {
+  if (closed_ || state_ == State::kNoBus || state_ == State::kClosing) return;
+  last_activity_ = std::chrono::steady_clock::now();
+  if (!idle_armed_) arm_idle_timer(last_activity_ + host_.config().idle_timeout);
+}
+
+// One wait at a time (touch() runs for every frame written); at its end the deadline is worked
+// out again from the latest activity.
+void SocketcandSession::arm_idle_timer(std::chrono::steady_clock::time_point deadline) {
+  idle_armed_ = true;
+  idle_timer_.expires_at(deadline);
+  idle_timer_.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
+    self->idle_armed_ = false;
+    if (e || self->closed_ || self->state_ == State::kClosing) return;
+    const auto timeout = self->host_.config().idle_timeout;
+    const auto due = self->last_activity_ + timeout;
+    if (std::chrono::steady_clock::now() < due) {
+      self->arm_idle_timer(due);
+      return;
+    }
+    self->host_.count(&ServerCounters::clients_refused);
+    self->refuse("idle for " + millis(timeout) + ": closing");
+  });
+}
+
 void SocketcandSession::close() {
   if (closed_) return;
   closed_ = true;
+  idle_timer_.cancel();
   boost::system::error_code ignored;
   socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
   socket_.close(ignored);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <cstdint>
@@ -62,10 +63,16 @@ class SocketcandSession : public std::enable_shared_from_this<SocketcandSession>
   // Answers `< error reason >` and closes once it is written.
   void refuse(const std::string& reason);
   void write_next();
+  // Re-arms the idle deadline (after open): called on every read and completed write.
+  void touch();
+  void arm_idle_timer(std::chrono::steady_clock::time_point deadline);
 
   SessionHost& host_;
   boost::asio::ip::tcp::socket socket_;
   boost::asio::steady_timer timer_;  // handshake deadline, then the raw-mode grace
+  boost::asio::steady_timer idle_timer_;
+  std::chrono::steady_clock::time_point last_activity_{};
+  bool idle_armed_ = false;
   State state_ = State::kNoBus;
   bool streaming_ = false;
   bool closed_ = false;

@@ -118,6 +118,33 @@ std::string ConfigReader::text(std::string_view key, std::size_t max_length) {
   return value->get();
 }
 
+std::vector<std::string> ConfigReader::texts(std::string_view key, std::size_t max_count,
+                                             std::size_t max_length) {
+  const std::string expected = "an array of at most " + std::to_string(max_count) + " strings";
+  const toml::node* node = find(key, expected);
+  std::vector<std::string> out;
+  if (node == nullptr) return out;
+  const toml::array* array = node->as_array();
+  if (array == nullptr || array->size() > max_count) {
+    problem(key_name(key) + ": " + show(*node) + " given; expected " + expected + where(*node));
+    return out;
+  }
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const toml::node& item = (*array)[i];
+    const auto* value = item.as_string();
+    const std::string name = key_name(key) + "[" + std::to_string(i) + "]";
+    if (value == nullptr) {
+      problem(name + ": " + show(item) + " is not a string" + where(item));
+    } else if (value->get().empty() || value->get().size() > max_length) {
+      problem(name + ": empty or longer than " + std::to_string(max_length) + " characters" +
+              where(item));
+    } else {
+      out.push_back(value->get());
+    }
+  }
+  return out;
+}
+
 std::string ConfigReader::choice(std::string_view key,
                                  std::initializer_list<std::string_view> allowed) {
   std::string options;

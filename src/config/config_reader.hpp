@@ -24,6 +24,9 @@ class ConfigReader {
   int integer(std::string_view key, int min, int max);
   bool boolean(std::string_view key);
   std::string text(std::string_view key, std::size_t max_length);
+  // An array of at most max_count strings of at most max_length characters each.
+  std::vector<std::string> texts(std::string_view key, std::size_t max_count,
+                                 std::size_t max_length);
   std::string choice(std::string_view key, std::initializer_list<std::string_view> allowed);
   std::vector<double> numbers(std::string_view key, double min, double max, std::size_t min_count,
                               std::size_t max_count);

@@ -195,7 +195,7 @@ BehaviourParams read_behaviours(ConfigReader r) {
 
 SafetyParams read_safety(ConfigReader r) {
   SafetyParams s;
-  s.operator_timeout_s = r.number("operator_timeout_s", 0.05, 10.0);
+  s.operator_timeout_s = r.number("operator_timeout_s", 0.05, 1.0);  // longer: a lost link drives on too long
   s.dead_man_dog = r.integer("dead_man_dog", 0, 255);
   s.max_duty_step = r.number("max_duty_step", 0.001, 2.0);
   s.direction_change_duty = r.number("direction_change_duty", 0.0, 0.2);
@@ -209,6 +209,8 @@ ConsoleParams read_console(ConfigReader r) {
   c.listen = r.text("listen", 64);
   c.token = r.text("token", 256);
   c.status_rate_hz = r.number("status_rate_hz", 1.0, 64.0);
+  c.allowed_hosts = r.texts("allowed_hosts", 32, 253);
+  c.allowed_origins = r.texts("allowed_origins", 32, 300);
   r.reject_unknown_keys();
   return c;
 }

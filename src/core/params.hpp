@@ -190,6 +190,8 @@ struct ConsoleParams {
   std::string listen = "127.0.0.1:8080";  // ADDR:PORT of the HTTP/WebSocket server
   std::string token;                      // empty: a fresh random token at every start
   double status_rate_hz = 20.0;           // status messages per second to each console
+  std::vector<std::string> allowed_hosts;    // Host names served besides the listen address
+  std::vector<std::string> allowed_origins;  // page origins that may open the WebSocket
 };
 
 // Where the calibrated values came from (config/calibration.hpp): not read from the

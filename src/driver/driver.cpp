@@ -160,6 +160,8 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   targets_ = operator_.targets(time_s);
   stopping_ = operator_.stopping(time_s);
   status_.operator_timeout = operator_.timed_out(time_s);
+  status_.stop_latched = operator_.stop_latched();
+  status_.stop_reason = operator_.stop_reason();
   status_.targets = {targets_.v1_radps, targets_.v2_radps, targets_.v4_radps, targets_.v6_radps,
                      targets_.v7_radps};
   update_faults(input);

@@ -28,6 +28,14 @@ std::optional<std::string> check_position(const char* name, const std::optional<
 
 }  // namespace
 
+bool is_neutral(const mobility::OperatorTargets& t) {
+  const auto& b = t.joint_buttons;
+  return t.v1_radps == 0.0 && t.v2_radps == 0.0 && t.v4_radps == 0.0 && t.v6_radps == 0.0 &&
+         t.v7_radps == 0.0 && t.gait_speed == 0.0 && !b.contract_front && !b.extend_front &&
+         !b.contract_rear && !b.extend_rear && !t.front_joint_target_rad &&
+         !t.rear_joint_target_rad;
+}
+
 OperatorChannel::OperatorChannel(const Params& params) : params_(&params) {}
 
 std::optional<std::string> OperatorChannel::check_targets(const mobility::OperatorTargets& t) const {
@@ -78,8 +86,15 @@ std::optional<std::string> OperatorChannel::receive(const OperatorInput& input, 
   }
   memory_ = next.memory;
   current_ = next;
-  stopped_ = input.stop;
   last_valid_s_ = time_s;
+  if (input.stop) {
+    armed_ = false;
+    stop_reason_ = input.stop_reason.empty() ? "stop" : input.stop_reason;
+  } else if (!armed_ && is_neutral(next)) {
+    armed_ = true;  // the operator let go: the next input drives
+  }
+  // A non-neutral input while latched is taken (its gait choice and button edges count, it
+  // renews the timeout) but moves nothing: targets() stay zero until the operator lets go.
   return std::nullopt;
 }
 
@@ -88,7 +103,7 @@ bool OperatorChannel::timed_out(double time_s) const {
 }
 
 mobility::OperatorTargets OperatorChannel::targets(double time_s) const {
-  if (stopped_ || timed_out(time_s)) {
+  if (!armed_ || timed_out(time_s)) {
     mobility::OperatorTargets zero;
     zero.gait = current_.gait;  // the gait stays selected; its speed is zero
     // Calibration mode stays too (with no button held): leaving it resets the joint positions,

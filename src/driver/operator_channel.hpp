@@ -3,6 +3,13 @@
 // operator_timeout_s ⇒ every target is zero and the rover comes to a controlled stop. An invalid
 // input (NaN, out of range) is rejected with a reason and the last valid one stands until the
 // timeout.
+//
+// A stop holds (an arming check, as on a hobby transmitter): after a stop — the STOP button of
+// any console, a take-over or a release, which the link turns into stops — every target stays
+// zero until the operator's input has been neutral (sticks centred, no gait speed, no joint
+// button: is_neutral). Otherwise the controller's next 20 Hz reading, its stick still pushed,
+// would drive on 50 ms after the stop. It lives here, not in the link, so that it holds for
+// every transport, every scenario and in replay.
 #pragma once
 
 #include <optional>
@@ -17,9 +24,14 @@ namespace marsokhod::driver {
 struct OperatorInput {
   std::optional<mobility::GamepadState> gamepad;
   std::optional<mobility::OperatorTargets> targets;  // memory is ignored
-  bool stop = false;          // the console's stop: all targets zero until the next input
+  bool stop = false;          // all targets zero until a neutral input re-arms (see above)
   bool clear_faults = false;  // acknowledge latched faults (silent controllers)
+  std::string stop_reason;    // who stopped and why ("client 3 pressed STOP"); empty: "stop"
 };
+
+// Neutral: no velocity, no gait speed, no joint button and no joint position asked for. The gait
+// and calibration mode may stay selected: choosing them moves nothing.
+bool is_neutral(const mobility::OperatorTargets& targets);
 
 class OperatorChannel {
  public:
@@ -34,6 +46,10 @@ class OperatorChannel {
   // The operator asks for a stop: a stop message, the timeout, or no input yet.
   bool stopping(double time_s) const { return stopped_ || timed_out(time_s); }
   bool ever_received() const { return last_valid_s_.has_value(); }
+  // True from a stop until a neutral input re-arms; then targets() are zero whatever is asked.
+  bool stop_latched() const { return !armed_; }
+  // Why the latest stop happened; kept after re-arming (empty before any stop).
+  const std::string& stop_reason() const { return stop_reason_; }
   const std::string& last_rejection() const { return last_rejection_; }
 
  private:
@@ -43,7 +59,8 @@ class OperatorChannel {
   mobility::OperatorTargets current_;
   mobility::GamepadMemory memory_;
   std::optional<double> last_valid_s_;
-  bool stopped_ = false;
+  bool armed_ = true;  // no stop yet: the first input drives (scenarios, replay)
+  std::string stop_reason_;
   std::string last_rejection_;
 };
 

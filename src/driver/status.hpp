@@ -71,6 +71,8 @@ struct DriverStatus {
   // Safety.
   bool operator_timeout = true;
   std::string operator_rejection;   // the latest invalid operator input's reason
+  bool stop_latched = false;        // stopped; targets zero until a neutral input re-arms
+  std::string stop_reason;          // the latest stop's origin ("client 3 pressed STOP")
   std::vector<std::string> faults;  // latched faults, e.g. "µ3 silent for 3 cycles"
   std::vector<std::string> warnings;  // not latched, e.g. "supply 19.8 V near brown-out"
   BusCounters bus;

@@ -1,7 +1,13 @@
 #include "link/access_token.hpp"
 
+#include <sys/random.h>
+#include <sys/stat.h>
+
 #include <array>
-#include <random>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <cstdio>
 #include <stdexcept>
 
 namespace marsokhod::link {
@@ -16,17 +22,57 @@ bool url_safe(char c) {
 
 }  // namespace
 
-std::string generate_token() {
+std::string random_hex(std::size_t bytes) {
   static constexpr std::array<char, 16> kHex = {'0', '1', '2', '3', '4', '5', '6', '7',
                                                 '8', '9', 'a', 'b', 'c', 'd', 'e', 'f'};
-  std::random_device source;
-  std::string token;
-  for (int word = 0; word < 4; ++word) {
-    // random_device yields unsigned int; take exactly 32 bits of each of four draws.
-    const std::uint32_t bits = static_cast<std::uint32_t>(source());
-    for (int shift = 28; shift >= 0; shift -= 4) token += kHex[(bits >> shift) & 0xFU];
+  std::string raw(bytes, '\0');
+  std::size_t filled = 0;
+  while (filled < bytes) {
+    const ssize_t got = ::getrandom(raw.data() + filled, bytes - filled, 0);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) {
+      throw std::runtime_error(std::string("getrandom failed: ") + std::strerror(errno));
+    }
+    filled += static_cast<std::size_t>(got);
   }
-  return token;
+  std::string hex;
+  for (const char c : raw) {
+    const auto byte = static_cast<unsigned char>(c);
+    hex += kHex[byte >> 4U];
+    hex += kHex[byte & 0xFU];
+  }
+  return hex;
+}
+
+std::string generate_token() { return random_hex(16); }
+
+std::string read_token_file(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  struct stat info {};
+  if (::stat(name.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) {
+    throw std::invalid_argument("token file '" + name + "': cannot read it (no such file?)");
+  }
+  if ((info.st_mode & (S_IRWXG | S_IRWXO)) != 0) {
+    char mode[8];
+    std::snprintf(mode, sizeof mode, "%04o", static_cast<unsigned>(info.st_mode & 07777));
+    throw std::invalid_argument("token file '" + name + "': mode " + mode +
+                                " lets others read it; make it the owner's only: chmod 600 " +
+                                name);
+  }
+  std::ifstream in(file);
+  std::string line;
+  if (!in || !std::getline(in, line)) {
+    throw std::invalid_argument("token file '" + name + "': cannot read a token from it");
+  }
+  const auto first = line.find_first_not_of(" \t\r");
+  const auto last = line.find_last_not_of(" \t\r");
+  line = first == std::string::npos ? "" : line.substr(first, last - first + 1);
+  try {
+    validate_token(line);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("token file '" + name + "': " + e.what());
+  }
+  return line;
 }
 
 void validate_token(std::string_view token) {

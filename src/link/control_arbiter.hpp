@@ -2,9 +2,13 @@
 // explicitly (take_control) — a console that merely opens never drives — and taking it from
 // another client is allowed, because the operator at the rover must be able to take over from
 // a forgotten browser tab. Read-only clients get an error for everything that would act on the
-// rover, except stop: a safety stop must work from any console, whoever holds control.
-// Whenever control changes hands or is given up (release, disconnect) the rover is stopped,
-// so it never keeps driving on a command its new operator did not give. Pure: no I/O, no time.
+// rover, except stop: a safety stop must work from any console, whoever holds control, and a
+// stop from another console also takes control away from the holder (who pressed STOP did so
+// because of what the holder's rover does). Whenever control changes hands or is given up
+// (release, disconnect) the rover is stopped, so it never keeps driving on a command its new
+// operator did not give; the driver then holds the stop until the controller's input is neutral
+// (driver::OperatorChannel). Every stop carries its reason, and every console is told who
+// stopped and why (StopNotice). Pure: no I/O, no time.
 #pragma once
 
 #include <cstdint>
@@ -22,7 +26,15 @@ using ClientId = std::uint64_t;
 struct InboundCommand {
   ClientId client_id = 0;
   OperatorMessage message;
-  std::string reason;  // empty for a client's own message; why the server made it otherwise
+  // Why: for every stop, who stopped and why ("client 3 pressed STOP", "client 2 took control
+  // from client 1"); empty for the other messages.
+  std::string reason;
+};
+
+// A stop, told to every console.
+struct StopNotice {
+  ClientId by = 0;  // whose action stopped the rover
+  std::string reason;
 };
 
 struct ControlChange {
@@ -38,6 +50,10 @@ struct ArbiterOutcome {
   std::optional<MessageError> error;
   bool pong = false;
   std::optional<ControlChange> change;
+  // A take_control by the holder repeats the state to it alone: a flood of them must not be
+  // re-broadcast to every console.
+  bool change_to_sender_only = false;
+  std::optional<StopNotice> stopped;
 };
 
 inline constexpr const char* kReadOnlyMessage = "read-only: take control first";
@@ -56,6 +72,7 @@ class ControlArbiter {
  private:
   ArbiterOutcome take_control(ClientId client);
   ArbiterOutcome release_control(ClientId client);
+  ArbiterOutcome stop(ClientId client);
 
   std::optional<ClientId> controller_;
 };

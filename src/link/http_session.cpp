@@ -1,6 +1,9 @@
 #include "link/http_session.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cctype>
+#include <cmath>
 #include <string_view>
 
 #include <boost/beast/websocket/rfc6455.hpp>
@@ -23,6 +26,21 @@ constexpr const char* kServerName = "marsokhod-link";
 
 std::string_view view(beast::string_view text) { return {text.data(), text.size()}; }
 
+// The console loads its own scripts and styles only, talks to its own server only, and may not
+// be framed (clickjacking the STOP or Take control button). ws://HOST: older browsers do not
+// count ws: as 'self'. HOST is the request's Host, already checked against the allowed names.
+std::string content_security_policy(std::string_view host) {
+  const bool clean = std::all_of(host.begin(), host.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '-' || c == ':' ||
+           c == '[' || c == ']';
+  });
+  if (!clean) host = {};  // a refused Host: not worth naming
+  return "default-src 'self'; script-src 'self'; style-src 'self' 'unsafe-inline'; "
+         "img-src 'self' data: blob:; connect-src 'self' ws://" +
+         std::string(host) +
+         "; object-src 'none'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'";
+}
+
 }  // namespace
 
 HttpSession::HttpSession(tcp::socket&& socket, ServerCore& core)
@@ -32,6 +50,13 @@ HttpSession::~HttpSession() { core_.untrack(key_); }
 
 void HttpSession::run() {
   key_ = core_.track(weak_from_this());
+  beast::error_code error;
+  const auto peer = stream_.socket().remote_endpoint(error);
+  if (error) return;  // gone already
+  address_ = peer.address().to_string();
+  deadline_ = std::chrono::steady_clock::now() +
+              std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                  std::chrono::duration<double>(core_.options().http_connection_max_s));
   read();
 }
 
@@ -41,7 +66,13 @@ void HttpSession::read() {
   parser_.emplace();
   parser_->header_limit(kRequestLimitBytes);
   parser_->body_limit(kRequestLimitBytes);
-  stream_.expires_after(kRequestTimeout);
+  const auto now = std::chrono::steady_clock::now();
+  if (now >= deadline_) {
+    close();  // kept alive long enough: the client may open a new connection
+    return;
+  }
+  stream_.expires_at(std::min<std::chrono::steady_clock::time_point>(now + kRequestTimeout,
+                                                                     deadline_));
   http::async_read(stream_, buffer_, *parser_,
                    [self = shared_from_this()](beast::error_code error, std::size_t) {
                      self->on_read(error);
@@ -55,30 +86,104 @@ void HttpSession::on_read(beast::error_code error) {
     return;
   }
   if (error || core_.stopping()) return;
-  Request request = parser_->release();
+  try {
+    handle(parser_->release());
+  } catch (const std::exception& failure) {
+    core_.on_handler_failure("an HTTP request", failure);
+    close();
+  }
+}
+
+void HttpSession::handle(Request&& request) {
+  if (!core_.host_allowed(view(request[http::field::host]))) {
+    core_.count_http_request();
+    send_text(request, http::status::forbidden,
+              "Host '" + std::string(view(request[http::field::host])) +
+                  "' is not this server's name: open the address it printed, or add the name to "
+                  "[console] allowed_hosts");
+    return;
+  }
   if (beast::websocket::is_upgrade(request)) {
     upgrade(std::move(request));
     return;
   }
   core_.count_http_request();
+  if (target_path(view(request.target())) == "/session") {
+    open_session(request);
+    return;
+  }
   respond(request);
 }
 
+static std::optional<std::string_view> origin_of(const HttpSession::Request& request) {
+  const auto it = request.find(http::field::origin);
+  if (it == request.end()) return std::nullopt;
+  return view(it->value());
+}
+
+bool HttpSession::refuse_token(const Request& request, const AuthDecision& decision) {
+  if (decision.result == AuthDecision::Result::kAllowed) return false;
+  if (decision.result == AuthDecision::Result::kBackingOff) {
+    const auto wait = std::to_string(static_cast<long long>(std::ceil(decision.wait_s)));
+    send_text(request, http::status::too_many_requests,
+              "too many wrong tokens from " + address_ + ": try again in " + wait + " s");
+    return true;
+  }
+  send_text(request, http::status::unauthorized,
+            "missing or wrong token: open the console with the address the rover's server "
+            "printed at start (http://…/?token=…)");
+  return true;
+}
+
 void HttpSession::upgrade(Request&& request) {
-  const std::string_view target = view(request.target());
-  if (target_path(target) != "/ws") {
+  if (target_path(view(request.target())) != "/ws") {
     core_.count_http_request();
-    send_text(request, http::status::not_found, "no WebSocket here; the console's is /ws?token=…");
-  } else if (!core_.authorized(target)) {
-    send_text(request, http::status::unauthorized,
-              "missing or wrong token: open the console with the address the rover's server "
-              "printed at start (http://…/?token=…)");
-  } else if (!core_.has_room()) {
+    send_text(request, http::status::not_found, "no WebSocket here; the console's is /ws");
+    return;
+  }
+  const auto origin = origin_of(request);
+  if (!core_.origin_allowed(origin)) {
+    send_text(request, http::status::forbidden,
+              "a page from " + std::string(origin.value_or("")) +
+                  " may not open the console's WebSocket; add it to [console] allowed_origins "
+                  "if it should");
+    return;
+  }
+  const AuthDecision decision = core_.authorize_upgrade(
+      view(request[http::field::cookie]), view(request[http::field::authorization]), address_);
+  if (refuse_token(request, decision)) return;
+  if (!core_.has_room()) {
     send_text(request, http::status::service_unavailable,
               "too many consoles connected; close one and try again");
-  } else {
-    std::make_shared<WebSocketSession>(stream_.release_socket(), core_)->run(std::move(request));
+    return;
   }
+  std::make_shared<WebSocketSession>(stream_.release_socket(), core_)->run(std::move(request));
+}
+
+void HttpSession::open_session(const Request& request) {
+  if (request.method() != http::verb::post) {
+    send_text(request, http::status::method_not_allowed,
+              "POST /session with Authorization: Bearer TOKEN");
+    return;
+  }
+  const auto origin = origin_of(request);
+  if (!core_.origin_allowed(origin)) {
+    send_text(request, http::status::forbidden,
+              "a page from " + std::string(origin.value_or("")) + " may not open a session");
+    return;
+  }
+  std::string session_id;
+  const AuthDecision decision =
+      core_.open_session(view(request[http::field::authorization]), address_, session_id);
+  if (refuse_token(request, decision)) return;
+  http::response<http::empty_body> response{http::status::no_content, request.version()};
+  // HttpOnly: no script reads it; SameSite=Strict: no other site's page sends it. No Max-Age:
+  // it ends with the browser (and the server forgets it when it restarts).
+  response.set(http::field::set_cookie,
+               core_.cookie_name() + "=" + session_id + "; Path=/; HttpOnly; SameSite=Strict");
+  response.set(http::field::cache_control, "no-store");
+  response.keep_alive(request.keep_alive());
+  send(request, std::move(response));
 }
 
 void HttpSession::respond(const Request& request) {
@@ -120,7 +225,7 @@ void HttpSession::send_file(const Request& request, const std::filesystem::path&
     response.set(http::field::content_type, type);
     response.content_length(size);
     response.keep_alive(request.keep_alive());
-    send(std::move(response));
+    send(request, std::move(response));
     return;
   }
   http::response<http::file_body> response{std::piecewise_construct,
@@ -132,24 +237,32 @@ void HttpSession::send_file(const Request& request, const std::filesystem::path&
   response.set(http::field::cache_control, "no-cache");
   response.content_length(size);
   response.keep_alive(request.keep_alive());
-  send(std::move(response));
+  send(request, std::move(response));
 }
 
 void HttpSession::send_text(const Request& request, http::status status, std::string body) {
   http::response<http::string_body> response{status, request.version()};
   response.set(http::field::server, kServerName);
   response.set(http::field::content_type, "text/plain; charset=utf-8");
-  if (status == http::status::method_not_allowed) response.set(http::field::allow, "GET, HEAD");
+  if (status == http::status::method_not_allowed) {
+    const bool session = target_path(view(request.target())) == "/session";
+    response.set(http::field::allow, session ? "POST" : "GET, HEAD");
+  }
   // A refusal ends the connection: a client that was refused has nothing more to ask.
   response.keep_alive(status == http::status::not_found && request.keep_alive());
   response.body() = std::move(body);
   response.body() += "\n";
   response.prepare_payload();
-  send(std::move(response));
+  send(request, std::move(response));
 }
 
 template <typename Body>
-void HttpSession::send(http::response<Body>&& response) {
+void HttpSession::send(const Request& request, http::response<Body>&& response) {
+  response.set(http::field::server, kServerName);
+  response.set("X-Content-Type-Options", "nosniff");
+  response.set("Referrer-Policy", "no-referrer");
+  response.set("Content-Security-Policy",
+               content_security_policy(view(request[http::field::host])));
   auto message = std::make_shared<http::response<Body>>(std::move(response));
   const bool close_after = message->need_eof();
   http::async_write(stream_, *message,

@@ -5,7 +5,13 @@
 // any client.
 //
 // Safety and flow rules (docs/operator-protocol.md has them for console writers):
-//  - every WebSocket needs the token (/ws?token=…); the console's files load without it;
+//  - every request's Host must be one of ours (DNS rebinding), every WebSocket upgrade's Origin
+//    too (cross-site WebSocket hijacking): request_guard.hpp; others get 403;
+//  - every WebSocket needs a session cookie (POST /session exchanges the token for one) or the
+//    token as Authorization: Bearer; the console's files load without either; wrong tokens are
+//    logged and back off per address (auth_guard.hpp);
+//  - gamepad and targets messages out of order or stale (a burst after a network stall) are
+//    dropped (input_freshness.hpp), and every console's message rate is limited;
 //  - control rules: control_arbiter.hpp; a controller's disconnect becomes a stop at once, its
 //    silence is the driver's operator_timeout_s;
 //  - every queue is bounded: a client whose outgoing queue fills (it reads slower than status
@@ -16,9 +22,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -38,13 +46,34 @@ struct ServerOptions {
   std::size_t client_queue_messages = 64;   // unsent messages per client before it is dropped
   std::size_t inbound_queue_commands = 256;  // commands waiting for take_inbound
   double idle_timeout_s = 10.0;        // a WebSocket silent this long (pings unanswered) is closed
+  std::vector<std::string> allowed_hosts;    // Host names served besides the listen address
+  std::vector<std::string> allowed_origins;  // WebSocket origins besides the server's own
+  std::size_t max_connections = 48;    // HTTP and WebSocket at once, handshakes included
+  double http_connection_max_s = 60.0;  // total keep-alive time of one HTTP connection
+  double max_input_age_s = 0.25;       // gamepad/targets later than the console's others: dropped
+  double message_rate_per_s = 60.0;    // per console, on average (it sends 20 Hz)...
+  double message_burst = 60.0;         // ...and at once; excess dropped and counted
+  double control_rate_per_s = 4.0;     // take_control, release_control, stop: the broadcasts
+  double control_burst = 8.0;
+  double auth_backoff_first_s = 1.0;   // an address's wait after a wrong token, doubling...
+  double auth_backoff_max_s = 30.0;    // ...up to this
+  // Called on the server thread with every text message before it is handled (logging, tests).
+  // If it throws, that is a failed handler: the console's session is closed (a stop if it held
+  // control), and the server serves on.
+  std::function<void(ClientId, std::string_view)> message_observer;
 };
 
 struct ServerStats {
   std::size_t clients = 0;              // WebSocket clients connected now
   std::optional<ClientId> controller;   // who holds control
   std::uint64_t connections = 0;        // WebSocket clients accepted since start()
-  std::uint64_t unauthorized = 0;       // upgrades refused for a missing or wrong token
+  std::uint64_t unauthorized = 0;       // upgrades and sessions refused: missing or wrong token
+  std::uint64_t auth_throttled = 0;     // refused unseen: the address is backing off
+  std::uint64_t forbidden = 0;          // 403: a Host or Origin not ours
+  std::uint64_t connections_refused = 0;  // closed at once: max_connections reached
+  std::uint64_t rate_limited = 0;       // messages dropped for the rate limit
+  std::uint64_t stale_dropped = 0;      // gamepad/targets out of order or stale
+  std::uint64_t handler_failures = 0;   // a handler threw: its session was closed
   std::uint64_t dropped_slow = 0;       // clients dropped because their queue was full
   std::uint64_t messages_received = 0;  // WebSocket messages from clients
   std::uint64_t messages_rejected = 0;  // answered with an error
@@ -75,7 +104,8 @@ class LinkServer {
   // The bound port (the one chosen for port 0); 0 before start().
   std::uint16_t port() const;
   const std::string& token() const;
-  // What to open in a browser: "http://127.0.0.1:8080/?token=…".
+  // What to open in a browser: "http://127.0.0.1:8080/?token=…" (the page trades the token for
+  // a session cookie and removes it from the address bar).
   std::string console_url() const;
 
   // Thread-safe. Every command that arrived since the last call, oldest first.

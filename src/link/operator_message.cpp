@@ -33,9 +33,33 @@ const Json& array_of(const Json& message, const char* key, std::size_t size, con
   return *it;
 }
 
+// 2^53 − 1: the largest integer a JavaScript number (the console's) holds exactly.
+constexpr double kMaxSeq = 9007199254740991.0;
+constexpr double kMaxSentMs = 1e15;  // year 33658 since 1970: any clock's milliseconds fit
+
+InputStamp read_stamp(const Json& message, const char* what) {
+  InputStamp stamp;
+  for (const char* key : {"seq", "sent_ms"}) {
+    if (!message.contains(key)) {
+      throw FieldError(key, std::string(key) + ": missing; " + what +
+                                " carries seq (counting up from 1) and sent_ms (the console's "
+                                "clock in ms)");
+    }
+  }
+  const double seq = read_number(message.at("seq"), "seq", {0.0, kMaxSeq, false, ""});
+  if (seq != static_cast<double>(static_cast<std::uint64_t>(seq))) {
+    throw FieldError("seq", "seq: expected an integer, got " + shown_value(message.at("seq")));
+  }
+  stamp.seq = static_cast<std::uint64_t>(seq);
+  stamp.sent_ms = read_number(message.at("sent_ms"), "sent_ms", {0.0, kMaxSentMs, false, "ms"});
+  return stamp;
+}
+
 GamepadMessage parse_gamepad(const Json& message) {
-  reject_unknown_keys(message, "", {"type", "axes", "buttons"}, "a gamepad message");
+  reject_unknown_keys(message, "", {"type", "seq", "sent_ms", "axes", "buttons"},
+                      "a gamepad message");
   GamepadMessage gamepad;
+  gamepad.stamp = read_stamp(message, "a gamepad message");
   const Json& axes = array_of(message, "axes", gamepad.axes.size(), "numbers in \u22121..1");
   const Json& buttons = array_of(message, "buttons", gamepad.buttons.size(), "booleans");
   for (std::size_t i = 0; i < gamepad.axes.size(); ++i) {
@@ -60,12 +84,13 @@ mobility::Gait read_gait(const Json& value) {
 
 TargetsMessage parse_targets(const Json& message, const Params& params) {
   reject_unknown_keys(message, "",
-                      {"type", "v1", "v2", "v4", "v6", "v7", "gait", "gait_speed",
-                       "calibration_mode"},
+                      {"type", "seq", "sent_ms", "v1", "v2", "v4", "v6", "v7", "gait",
+                       "gait_speed", "calibration_mode"},
                       "a targets message");
   const OperatorParams& limits = params.operator_input;
   const double joint_limit = params.motors.max_no_load_speed_radps;
   TargetsMessage targets;
+  targets.stamp = read_stamp(message, "a targets message");
   const auto speed = [&message](const char* key, double limit, double& out) {
     if (const auto it = message.find(key); it != message.end()) {
       out = read_number(*it, key, symmetric_range(limit, "rad/s"));
@@ -230,9 +255,15 @@ Json operator_message_json(const OperatorMessage& message) {
       [&message](const auto& value) -> Json {
         using Message = std::decay_t<decltype(value)>;
         if constexpr (std::is_same_v<Message, GamepadMessage>) {
-          return {{"type", "gamepad"}, {"axes", value.axes}, {"buttons", value.buttons}};
+          return {{"type", "gamepad"},
+                  {"seq", value.stamp.seq},
+                  {"sent_ms", value.stamp.sent_ms},
+                  {"axes", value.axes},
+                  {"buttons", value.buttons}};
         } else if constexpr (std::is_same_v<Message, TargetsMessage>) {
-          return {{"type", "targets"},          {"v1", value.v1_radps},
+          return {{"type", "targets"},          {"seq", value.stamp.seq},
+                  {"sent_ms", value.stamp.sent_ms},
+                  {"v1", value.v1_radps},
                   {"v2", value.v2_radps},       {"v4", value.v4_radps},
                   {"v6", value.v6_radps},       {"v7", value.v7_radps},
                   {"gait", mobility::gait_id(value.gait)}, {"gait_speed", value.gait_speed},
@@ -269,6 +300,12 @@ std::optional<driver::OperatorInput> operator_input(const OperatorMessage& messa
     return std::nullopt;
   }
   return input;
+}
+
+std::optional<InputStamp> input_stamp(const OperatorMessage& message) {
+  if (const auto* gamepad = std::get_if<GamepadMessage>(&message)) return gamepad->stamp;
+  if (const auto* targets = std::get_if<TargetsMessage>(&message)) return targets->stamp;
+  return std::nullopt;
 }
 
 driver::RuntimeSettings apply_configuration(const ConfigureMessage& message,

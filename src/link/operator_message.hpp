@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,8 +28,21 @@ namespace marsokhod::link {
 // every number written out in full) is well under 2 KiB.
 inline constexpr std::size_t kMaxOperatorMessageBytes = 4096;
 
-// {"type":"gamepad","axes":[4 numbers in −1..1],"buttons":[17 booleans]}, W3C standard mapping.
+// Every gamepad and targets message carries its place in the console's stream: `seq` counts up
+// from 1 on each connection and `sent_ms` is the console's clock when it sent it (any epoch,
+// milliseconds). The server drops a message whose seq is not above the last one's, or that is
+// older than the others by more than ServerOptions::max_input_age_s (input_freshness.hpp), so a
+// burst of old readings after a network stall cannot restart motion.
+struct InputStamp {
+  std::uint64_t seq = 0;  // 0 .. 2^53 − 1 (what a JavaScript number holds exactly)
+  double sent_ms = 0.0;   // 0 .. 1e15 ms
+  bool operator==(const InputStamp&) const = default;
+};
+
+// {"type":"gamepad","seq":…,"sent_ms":…,"axes":[4 numbers in −1..1],"buttons":[17 booleans]},
+// W3C standard mapping.
 struct GamepadMessage {
+  InputStamp stamp;
   std::array<double, mobility::kGamepadAxisCount> axes{};
   std::array<bool, mobility::kGamepadButtonCount> buttons{};
   bool operator==(const GamepadMessage&) const = default;
@@ -37,6 +51,7 @@ struct GamepadMessage {
 // {"type":"targets", …}: the mapping's output directly. A key left out means 0, "none", false:
 // each message is complete, so a lost one cannot leave a stale value behind.
 struct TargetsMessage {
+  InputStamp stamp;
   double v1_radps = 0.0;  // |v1| ≤ max_drive_speed_radps
   double v2_radps = 0.0;  // |v2| ≤ max_spin_speed_radps
   double v4_radps = 0.0;  // |v4| ≤ max_trench_speed_radps
@@ -106,6 +121,10 @@ std::string_view message_type(const OperatorMessage& message);
 nlohmann::json operator_message_json(const OperatorMessage& message);
 
 std::string_view load_distribution_id(LoadDistributionMode mode);
+
+// The stamp of a gamepad or targets message; nullopt for the others (they are never stale: a
+// late stop is still a stop).
+std::optional<InputStamp> input_stamp(const OperatorMessage& message);
 
 // What the driver takes from a message: gamepad, targets, stop and clear_faults become an
 // OperatorInput (for targets, the gamepad memory is the driver's); the others give nullopt.

@@ -29,11 +29,28 @@ void validate(const ServerOptions& options) {
     throw std::invalid_argument("idle_timeout_s: must be a finite number > 0 s");
   }
   if (options.max_clients == 0 || options.client_queue_messages == 0 ||
-      options.inbound_queue_commands == 0) {
+      options.inbound_queue_commands == 0 || options.max_connections == 0) {
     throw std::invalid_argument(
-        "max_clients, client_queue_messages, inbound_queue_commands: must be at least 1");
+        "max_clients, client_queue_messages, inbound_queue_commands, max_connections: must be "
+        "at least 1");
   }
+  for (const double value :
+       {options.http_connection_max_s, options.max_input_age_s, options.message_rate_per_s,
+        options.message_burst, options.control_rate_per_s, options.control_burst,
+        options.auth_backoff_first_s, options.auth_backoff_max_s}) {
+    if (!std::isfinite(value) || value <= 0.0) {
+      throw std::invalid_argument(
+          "http_connection_max_s, max_input_age_s, the rates, bursts and back-offs: must be "
+          "finite numbers > 0");
+    }
+  }
+  for (const std::string& host : options.allowed_hosts) validate_host_name(host);
+  for (const std::string& origin : options.allowed_origins) validate_origin(origin);
 }
+
+// Back off after a failed accept (out of file descriptors): retrying at once would spin.
+constexpr auto kAcceptRetry = std::chrono::milliseconds(100);
+constexpr std::size_t kMaxThrottledAddresses = 1024;
 
 std::string checked_token(const std::string& given) {
   if (given.empty()) return generate_token();
@@ -47,8 +64,11 @@ ServerCore::ServerCore(const Params& params, ServerOptions options)
     : params_(params),
       options_(std::move(options)),
       token_(checked_token(options_.token)),
+      throttle_(options_.auth_backoff_first_s, options_.auth_backoff_max_s,
+                kMaxThrottledAddresses),
       acceptor_(io_),
-      status_timer_(io_) {
+      status_timer_(io_),
+      accept_timer_(io_) {
   validate(options_);
 }
 
@@ -71,6 +91,8 @@ void ServerCore::start() {
                              error.message() + "; choose another with --listen ADDR:PORT");
   }
   port_ = acceptor_.local_endpoint().port();
+  policy_ = origin_policy(options_.listen.address, port_, options_.allowed_hosts,
+                          options_.allowed_origins);
   accept();
   thread_ = std::thread([this] { run_thread(); });
 }
@@ -100,6 +122,7 @@ void ServerCore::shutdown() {
   boost::system::error_code ignored;
   acceptor_.close(ignored);
   status_timer_.cancel();
+  accept_timer_.cancel();
   std::vector<std::shared_ptr<Connection>> open;
   for (const auto& [key, connection] : connections_) {
     if (auto alive = connection.lock()) open.push_back(std::move(alive));
@@ -110,7 +133,24 @@ void ServerCore::shutdown() {
 void ServerCore::accept() {
   acceptor_.async_accept([this](boost::system::error_code error, tcp::socket socket) {
     if (stopping_ || !acceptor_.is_open()) return;
-    if (!error) std::make_shared<HttpSession>(std::move(socket), *this)->run();
+    if (error) {
+      std::fprintf(stderr, "link: accept failed (%s); retrying in 100 ms\n",
+                   error.message().c_str());
+      accept_timer_.expires_after(kAcceptRetry);
+      accept_timer_.async_wait([this](boost::system::error_code e) {
+        if (!e && !stopping_) accept();
+      });
+      return;
+    }
+    if (connections_.size() >= options_.max_connections) {
+      count(&ServerStats::connections_refused);  // closed unread: the socket goes at once
+    } else {
+      try {
+        std::make_shared<HttpSession>(std::move(socket), *this)->run();
+      } catch (const std::exception& e) {
+        on_handler_failure("accept", e);  // e.g. the peer left before we asked its address
+      }
+    }
     accept();
   });
 }
@@ -123,12 +163,9 @@ std::uint64_t ServerCore::track(std::weak_ptr<Connection> connection) {
 
 void ServerCore::untrack(std::uint64_t key) { connections_.erase(key); }
 
-bool ServerCore::authorized(std::string_view target) {
-  const auto given = query_parameter(target, "token");
-  if (given && tokens_equal(*given, token_)) return true;
+void ServerCore::count(std::uint64_t ServerStats::*counter) {
   const std::lock_guard lock(mutex_);
-  ++stats_.unauthorized;
-  return false;
+  ++(stats_.*counter);
 }
 
 void ServerCore::count_http_request() {
@@ -138,7 +175,9 @@ void ServerCore::count_http_request() {
 
 ClientId ServerCore::add_client(const std::shared_ptr<WebSocketSession>& session) {
   const ClientId client = next_client_++;
-  clients_.emplace(client, session);
+  clients_.emplace(client, Client{session, InputFreshness(options_.max_input_age_s),
+                                  TokenBucket(options_.message_rate_per_s, options_.message_burst),
+                                  TokenBucket(options_.control_rate_per_s, options_.control_burst)});
   {
     const std::lock_guard lock(mutex_);
     ++stats_.connections;
@@ -160,24 +199,52 @@ void ServerCore::remove_client(ClientId client) {
 }
 
 void ServerCore::on_text(ClientId client, std::string_view text) {
-  {
-    const std::lock_guard lock(mutex_);
-    ++stats_.messages_received;
+  count(&ServerStats::messages_received);
+  const auto it = clients_.find(client);
+  if (it == clients_.end()) return;
+  const double now_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  if (!it->second.messages.take(now_s)) {
+    count(&ServerStats::rate_limited);
+    return;
   }
+  if (options_.message_observer) options_.message_observer(client, text);
   const ParseResult parsed = parse_operator_message(text, params_);
   const std::optional<OperatorMessage> message = message_of(parsed);
   if (!message) {
     reject(client, std::get<MessageError>(parsed));
     return;
   }
-  apply(client, arbiter_.on_message(client, *message));
+  ArbiterOutcome outcome;
+  if (admit(*message, now_s, outcome, client)) apply(client, std::move(outcome));
+}
+
+// The per-console guards, then the arbiter. False: dropped (counted, nothing to send).
+bool ServerCore::admit(const OperatorMessage& message, double now_s, ArbiterOutcome& outcome,
+                       ClientId client) {
+  Client& state = clients_.at(client);
+  if (const auto stamp = input_stamp(message)) {
+    if (state.freshness.check(*stamp, now_s)) {
+      count(&ServerStats::stale_dropped);
+      return false;
+    }
+  }
+  const bool is_stop = std::holds_alternative<StopMessage>(message);
+  const bool changes_control = std::holds_alternative<TakeControlMessage>(message) ||
+                               std::holds_alternative<ReleaseControlMessage>(message);
+  const bool within_control_rate = (!is_stop && !changes_control) || state.control.take(now_s);
+  if (!within_control_rate) {
+    count(&ServerStats::rate_limited);
+    if (changes_control) return false;
+  }
+  outcome = arbiter_.on_message(client, message);
+  // Over the rate, a stop still reaches the driver; only its broadcast is left out.
+  if (!within_control_rate) outcome.stopped.reset();
+  return true;
 }
 
 void ServerCore::on_binary(ClientId client) {
-  {
-    const std::lock_guard lock(mutex_);
-    ++stats_.messages_received;
-  }
+  count(&ServerStats::messages_received);
   reject(client, {"json", "binary frame: send each message as JSON text"});
 }
 
@@ -199,9 +266,20 @@ void ServerCore::apply(ClientId sender, ArbiterOutcome outcome) {
       const std::lock_guard lock(mutex_);
       stats_.controller = outcome.change->controller;
     }
-    for (const auto& [client, session] : clients_) {
-      send_to(client, control_json(*outcome.change, client));
+    if (outcome.change_to_sender_only) {
+      send_to(sender, control_json(*outcome.change, sender));
+    } else {
+      for (const auto& [client, state] : clients_) {
+        send_to(client, control_json(*outcome.change, client));
+      }
     }
+  }
+  if (outcome.stopped) {
+    const auto text = std::make_shared<const std::string>(wire_text(stopped_json(*outcome.stopped)));
+    // A copy: a send may drop a slow client, which erases it from clients_.
+    std::vector<std::shared_ptr<WebSocketSession>> sessions;
+    for (const auto& [client, state] : clients_) sessions.push_back(state.session);
+    for (const auto& session : sessions) session->send(text);
   }
 }
 
@@ -224,7 +302,8 @@ bool ServerCore::push_inbound(std::vector<InboundCommand> commands) {
 void ServerCore::send_to(ClientId client, const nlohmann::json& message) {
   const auto it = clients_.find(client);
   if (it == clients_.end()) return;
-  it->second->send(std::make_shared<const std::string>(wire_text(message)));
+  const auto session = it->second.session;  // send may drop the client, erasing the entry
+  session->send(std::make_shared<const std::string>(wire_text(message)));
 }
 
 void ServerCore::reject(ClientId client, const MessageError& error) {
@@ -281,7 +360,9 @@ void ServerCore::flush_status() {
                                 std::chrono::duration<double>(options_.status_period_s));
   // One text for every client: the dump is the expensive part.
   const auto text = std::make_shared<const std::string>(wire_text(status_envelope(status)));
-  for (const auto& [client, session] : clients_) session->send(text);
+  std::vector<std::shared_ptr<WebSocketSession>> sessions;
+  for (const auto& [client, state] : clients_) sessions.push_back(state.session);
+  for (const auto& session : sessions) session->send(text);
 }
 
 }  // namespace marsokhod::link

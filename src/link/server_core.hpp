@@ -19,7 +19,10 @@
 #include <boost/asio/steady_timer.hpp>
 #include <nlohmann/json.hpp>
 
+#include "link/auth_guard.hpp"
+#include "link/input_freshness.hpp"
 #include "link/link_server.hpp"
+#include "link/request_guard.hpp"
 
 namespace marsokhod::link {
 
@@ -32,6 +35,12 @@ class Connection {
 };
 
 class WebSocketSession;
+
+// What an authorisation check decided (HttpSession answers 401 or 429 for the refusals).
+struct AuthDecision {
+  enum class Result { kAllowed, kWrongToken, kBackingOff } result = Result::kWrongToken;
+  double wait_s = 0.0;  // kBackingOff: how long the address must still wait
+};
 
 class ServerCore {
  public:
@@ -54,8 +63,19 @@ class ServerCore {
   bool stopping() const { return stopping_; }
   std::uint64_t track(std::weak_ptr<Connection> connection);
   void untrack(std::uint64_t key);
-  bool authorized(std::string_view target);  // counts refusals
+  // Host and Origin (request_guard.hpp); count the refusals. An absent Origin passes.
+  bool host_allowed(std::string_view host);
+  bool origin_allowed(std::optional<std::string_view> origin);
+  // A WebSocket upgrade: the session cookie, else Authorization: Bearer TOKEN (throttled).
+  AuthDecision authorize_upgrade(std::string_view cookie_header, std::string_view authorization,
+                                 const std::string& address);
+  // POST /session: the token for a new session id (set as the cookie).
+  AuthDecision open_session(std::string_view authorization, const std::string& address,
+                            std::string& session_id);
+  std::string cookie_name() const { return "marsokhod_session_" + std::to_string(port_); }
   bool has_room() const { return clients_.size() < options_.max_clients; }
+  // A handler threw: logs it; the session closes itself (and a controller's close is a stop).
+  void on_handler_failure(const char* where, const std::exception& error);
   void count_http_request();
   // A WebSocket whose handshake completed: gets its id and the hello.
   ClientId add_client(const std::shared_ptr<WebSocketSession>& session);
@@ -73,12 +93,27 @@ class ServerCore {
   bool push_inbound(std::vector<InboundCommand> commands);
   void send_to(ClientId client, const nlohmann::json& message);
   void reject(ClientId client, const MessageError& error);
+  AuthDecision check_token(std::string_view given, const std::string& address);
+  void count(std::uint64_t ServerStats::*counter);
+  bool admit(const OperatorMessage& message, double now_s, ArbiterOutcome& outcome,
+             ClientId client);
+
+  // One console: its session and the guards on what it sends.
+  struct Client {
+    std::shared_ptr<WebSocketSession> session;
+    InputFreshness freshness;
+    TokenBucket messages;
+    TokenBucket control;
+  };
 
   Params params_;
   ServerOptions options_;
   std::string token_;
   ControlArbiter arbiter_;
-  std::map<ClientId, std::shared_ptr<WebSocketSession>> clients_;
+  std::map<ClientId, Client> clients_;
+  OriginPolicy policy_;       // set by start(), once the port is known
+  SessionStore sessions_{64};
+  AuthThrottle throttle_;
   std::map<std::uint64_t, std::weak_ptr<Connection>> connections_;
   ClientId next_client_ = 1;
   std::uint64_t next_connection_ = 1;
@@ -100,6 +135,7 @@ class ServerCore {
   boost::asio::io_context io_;
   boost::asio::ip::tcp::acceptor acceptor_;
   boost::asio::steady_timer status_timer_;
+  boost::asio::steady_timer accept_timer_;  // the pause after a failed accept (EMFILE)
   std::thread thread_;
 };
 

@@ -35,6 +35,10 @@ nlohmann::json error_json(const MessageError& error) {
   return {{"type", "error"}, {"field", error.field}, {"message", error.message}};
 }
 
+nlohmann::json stopped_json(const StopNotice& notice) {
+  return {{"type", "stopped"}, {"by", notice.by}, {"reason", notice.reason}};
+}
+
 nlohmann::json pong_json() { return {{"type", "pong"}}; }
 
 nlohmann::json status_envelope(const nlohmann::json& status) {

@@ -12,7 +12,9 @@
 
 namespace marsokhod::link {
 
-inline constexpr int kProtocolVersion = 1;
+// 2: gamepad and targets carry seq and sent_ms; the server sends `stopped`; the WebSocket is
+// authorised by the session cookie (or Authorization: Bearer), not ?token=.
+inline constexpr int kProtocolVersion = 2;
 
 // {"type":"hello","protocol":1,"client_id":N,"controller":M|null,"read_only":bool}
 // `calibration` names the calibration file the driver loaded on top of the configuration (null
@@ -26,6 +28,9 @@ nlohmann::json control_json(const ControlChange& change, ClientId recipient);
 
 // {"type":"error","field":"…","message":"…"}
 nlohmann::json error_json(const MessageError& error);
+
+// {"type":"stopped","by":N,"reason":"client 3 pressed STOP"}: to every console, for every stop.
+nlohmann::json stopped_json(const StopNotice& notice);
 
 // {"type":"pong"}
 nlohmann::json pong_json();

@@ -83,6 +83,8 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
       {"joint_bounds", joint_bounds_json(s.joint_bounds)},
       {"operator_timeout", s.operator_timeout},
       {"operator_rejection", s.operator_rejection},
+      {"stop_latched", s.stop_latched},
+      {"stop_reason", s.stop_reason},
       {"faults", s.faults},
       {"warnings", s.warnings},
       {"bus", bus_json(s.bus)},

@@ -39,6 +39,8 @@ void WebSocketSession::run(beast::http::request<beast::http::string_body> reques
   ws_.set_option(timeouts);
   ws_.set_option(websocket::stream_base::decorator([](websocket::response_type& response) {
     response.set(beast::http::field::server, "marsokhod-link");
+    response.set("X-Content-Type-Options", "nosniff");
+    response.set("Referrer-Policy", "no-referrer");
   }));
   ws_.read_message_max(kReadMessageMaxBytes);
   ws_.async_accept(request, [self = shared_from_this()](beast::error_code error) {
@@ -51,7 +53,13 @@ void WebSocketSession::on_accept(beast::error_code error) {
     close();
     return;
   }
-  client_ = core_.add_client(shared_from_this());
+  try {
+    client_ = core_.add_client(shared_from_this());
+  } catch (const std::exception& failure) {
+    core_.on_handler_failure("a console's hello", failure);
+    finish();
+    return;
+  }
   read();
 }
 
@@ -66,10 +74,18 @@ void WebSocketSession::on_read(beast::error_code error) {
     finish();
     return;
   }
-  if (ws_.got_text()) {
-    core_.on_text(client_, beast::buffers_to_string(buffer_.data()));
-  } else {
-    core_.on_binary(client_);
+  try {
+    if (ws_.got_text()) {
+      core_.on_text(client_, beast::buffers_to_string(buffer_.data()));
+    } else {
+      core_.on_binary(client_);
+    }
+  } catch (const std::exception& failure) {
+    // Never a dead session holding control: this one ends, and if it held control, its end is a
+    // disconnect, which stops the rover.
+    core_.on_handler_failure("a console's message", failure);
+    finish();
+    return;
   }
   buffer_.consume(buffer_.size());
   read();

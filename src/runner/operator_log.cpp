@@ -75,13 +75,14 @@ json to_json(const driver::OperatorInput& input) {
     j["targets"] = tj;
   }
   if (input.stop) j["stop"] = true;
+  if (!input.stop_reason.empty()) j["stop_reason"] = input.stop_reason;
   if (input.clear_faults) j["clear_faults"] = true;
   return j;
 }
 
 driver::OperatorInput operator_input_from_json(const json& j) {
   if (!j.is_object()) throw std::invalid_argument("input: expected an object");
-  reject_unknown(j, {"gamepad", "targets", "stop", "clear_faults"}, "input.");
+  reject_unknown(j, {"gamepad", "targets", "stop", "clear_faults", "stop_reason"}, "input.");
   driver::OperatorInput in;
   if (j.contains("gamepad")) {
     const json& g = j.at("gamepad");
@@ -94,6 +95,7 @@ driver::OperatorInput operator_input_from_json(const json& j) {
   if (j.contains("targets")) in.targets = targets_from_json(j.at("targets"));
   in.stop = field(j, "stop", "input.", false);
   in.clear_faults = field(j, "clear_faults", "input.", false);
+  in.stop_reason = field<std::string>(j, "stop_reason", "input.", "");
   return in;
 }
 

@@ -4,11 +4,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <fstream>
 #include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
 
+#include "config/config_reader.hpp"
 #include "runner/metrics.hpp"
 #include "runner/operator_log.hpp"
 #include "sim/physics/terrain.hpp"
@@ -31,12 +34,32 @@ class Reader {
     throw std::invalid_argument(file_ + ": " + key + ": " + what + where);
   }
 
-  double number(const toml::table& t, const std::string& key, double fallback,
-                const std::string& prefix = "") const {
-    const toml::node* n = t.get(key);
-    if (n == nullptr) return fallback;
-    if (!n->is_number()) fail(prefix + key, "expected a number", n);
-    return n->value<double>().value_or(fallback);
+  // The configuration reader's check (finite, in [min, max], the line named); absent: fallback.
+  double number(const toml::table& t, const std::string& key, double fallback, double min,
+                double max, const std::string& prefix = "") const {
+    if (t.get(key) == nullptr) return fallback;
+    std::vector<std::string> problems;
+    const std::string path = prefix.empty() ? "" : prefix.substr(0, prefix.size() - 1);
+    config::ConfigReader reader(&t, path, problems);
+    const double value = reader.number(key, min, max);
+    if (!problems.empty()) throw std::invalid_argument(file_ + ": " + problems.front());
+    return value;
+  }
+
+  // Anything in the file that is NaN or ±inf, named by its key, before any value is used: toml
+  // reads nan and inf, and nothing in a scenario means them.
+  void reject_non_finite(const toml::node& node, const std::string& key) const {
+    if (const auto* value = node.as_floating_point()) {
+      if (!std::isfinite(value->get())) fail(key, "is not a finite number", &node);
+    } else if (const auto* table = node.as_table()) {
+      for (const auto& [k, child] : *table) {
+        reject_non_finite(child, (key.empty() ? "" : key + ".") + std::string(k.str()));
+      }
+    } else if (const auto* array = node.as_array()) {
+      for (std::size_t i = 0; i < array->size(); ++i) {
+        reject_non_finite(*array->get(i), key + "[" + std::to_string(i) + "]");
+      }
+    }
   }
 
   std::vector<std::size_t> indices(const toml::table& t, const std::string& key, std::size_t limit,
@@ -110,9 +133,7 @@ void read_sim(const Reader& r, const toml::table& root, Scenario& s) {
       if (!v) r.fail("sim.nominal_unit", "expected true or false", &node);
       s.sim.nominal_unit = *v;
     } else if (k == "state_of_charge") {
-      const double v = r.number(*sim, k, 0.8, "sim.");
-      if (v < 0.0 || v > 1.0) r.fail("sim.state_of_charge", "allowed [0, 1]", &node);
-      s.state_of_charge = v;
+      s.state_of_charge = r.number(*sim, k, 0.8, 0.0, 1.0, "sim.");
     } else {
       r.fail("sim." + k, "unknown key", &node);
     }
@@ -126,8 +147,8 @@ void read_inputs(const Reader& r, const toml::table& root, Scenario& s) {
     const toml::table* t = (*inputs)[i].as_table();
     const std::string name = "input[" + std::to_string(i) + "].";
     InputEvent e;
-    e.t_s = r.number(*t, "t", -1.0, name);
-    if (e.t_s < 0.0) r.fail(name + "t", "a time ≥ 0 s is required", t);
+    if (t->get("t") == nullptr) r.fail(name + "t", "a time ≥ 0 s is required", t);
+    e.t_s = r.number(*t, "t", 0.0, 0.0, s.duration_s, name);
     json j = json::object();
     for (const auto& [key, node] : *t) {
       const std::string k(key.str());
@@ -155,12 +176,13 @@ void read_faults(const Reader& r, const toml::table& root, Scenario& s) {
     FaultEvent f;
     for (const auto& [key, node] : *t) {
       const std::string k(key.str());
-      if (k == "t") f.t_s = r.number(*t, k, 0.0, name);
+      if (k == "t") f.t_s = r.number(*t, k, 0.0, 0.0, s.duration_s, name);
       else if (k == "wheel_blocked") f.wheel_blocked = r.indices(*t, k, kWheelCount, name);
       else if (k == "wheel_no_contact") f.wheel_no_contact = r.indices(*t, k, kWheelCount, name);
       else if (k == "silent") f.silent = r.indices(*t, k, kMotorCount + 1, name);
-      else if (k == "frame_loss") f.frame_loss = r.number(*t, k, 0.0, name);
-      else if (k == "battery_sag_ohm") f.battery_sag_ohm = r.number(*t, k, 0.0, name);
+      else if (k == "frame_loss") f.frame_loss = r.number(*t, k, 0.0, 0.0, 1.0, name);
+      // The simulator's bound (SimulatedRover::set_faults), checked here to name the line.
+      else if (k == "battery_sag_ohm") f.battery_sag_ohm = r.number(*t, k, 0.0, 0.0, 100.0, name);
       else if (k == "brownout") f.brownout = node.value_or(false);
       else if (k == "driver_halt") f.driver_halt = node.value_or(false);
       else if (k == "clear") f.clear = node.value_or(false);
@@ -172,7 +194,7 @@ void read_faults(const Reader& r, const toml::table& root, Scenario& s) {
           r.fail(name + k, "expected {motor = 0..7, fraction = 0..1}", &node);
         }
         f.lost_pulses = std::make_pair(static_cast<std::size_t>(*motor),
-                                       r.number(*lp, "fraction", 0.0, name + k + "."));
+                                       r.number(*lp, "fraction", 0.0, 0.0, 1.0, name + k + "."));
       } else {
         r.fail(name + k, "unknown key", &node);
       }
@@ -197,8 +219,8 @@ void read_phases(const Reader& r, const toml::table& root, Scenario& s) {
     for (const Phase& other : s.phases) {
       if (other.name == p.name) r.fail(name + "name", "\"" + p.name + "\" is used twice", &t);
     }
-    p.from_s = r.number(t, "from_s", -1.0, name);
-    p.to_s = r.number(t, "to_s", -1.0, name);
+    p.from_s = r.number(t, "from_s", -1.0, 0.0, 3600.0, name);
+    p.to_s = r.number(t, "to_s", -1.0, 0.0, 3600.0, name);
     if (p.from_s < 0.0) r.fail(name + "from_s", "a start time >= 0 s is required", &t);
     if (!(p.to_s > p.from_s && p.to_s <= s.duration_s)) {
       r.fail(name + "to_s", "an end time after from_s and at most duration_s is required", &t);
@@ -239,8 +261,8 @@ void read_checks(const Reader& r, const toml::table& root, Scenario& s) {
     }
     if (c.metric.empty()) r.fail(name + "metric", "a metric name (or ratio_of) is required", &t);
     if (c.name.empty()) c.name = c.metric;
-    if (t.get("min")) c.min = r.number(t, "min", 0.0, name);
-    if (t.get("max")) c.max = r.number(t, "max", 0.0, name);
+    if (t.get("min")) c.min = r.number(t, "min", 0.0, -1e300, 1e300, name);
+    if (t.get("max")) c.max = r.number(t, "max", 0.0, -1e300, 1e300, name);
     if (!c.min && !c.max) r.fail(name + "min", "give min, max or both", &t);
     if (c.min && c.max && *c.min > *c.max) r.fail(name + "max", "max is below min", &t);
     s.checks.push_back(c);
@@ -269,7 +291,7 @@ void read_runtime(const Reader& r, const toml::table& root, Scenario& s) {
     const toml::table& t = *(*changes)[i].as_table();
     const std::string name = "runtime_change[" + std::to_string(i) + "]";
     RuntimeEvent e;
-    e.t_s = r.number(t, "t", 0.0, name + ".");
+    e.t_s = r.number(t, "t", 0.0, 0.0, s.duration_s, name + ".");
     e.settings = to_nlohmann(t);
     e.settings.erase("t");
     check_runtime(r, e.settings, name, t);
@@ -280,10 +302,18 @@ void read_runtime(const Reader& r, const toml::table& root, Scenario& s) {
 }  // namespace
 
 Scenario load_scenario(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::invalid_argument(file.string() + ": cannot read the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scenario(text.str(), file);
+}
+
+Scenario parse_scenario(std::string_view text, const std::filesystem::path& file) {
   const Reader r(file.string());
   toml::table root;
   try {
-    root = toml::parse_file(file.string());
+    root = toml::parse(text, file.string());
   } catch (const toml::parse_error& e) {
     r.fail("(file)", std::string(e.description()) + " at line " +
                          std::to_string(e.source().begin.line));
@@ -296,13 +326,20 @@ Scenario load_scenario(const std::filesystem::path& file) {
       r.fail(std::string(key.str()), "unknown key", &node);
     }
   }
+  r.reject_non_finite(root, "");
   Scenario s;
   s.file = file;
   s.name = root["name"].value_or(file.stem().string());
   s.description = root["description"].value_or(std::string());
-  s.duration_s = r.number(root, "duration_s", 10.0);
-  if (!(s.duration_s > 0.0 && s.duration_s <= 3600.0)) r.fail("duration_s", "allowed (0, 3600] s");
-  s.seed = static_cast<std::uint64_t>(root["seed"].value_or<std::int64_t>(1));
+  s.duration_s = r.number(root, "duration_s", 10.0, 0.0, 3600.0);
+  if (!(s.duration_s > 0.0)) r.fail("duration_s", "allowed (0, 3600] s");
+  if (const toml::node* seed = root.get("seed")) {
+    const auto value = seed->value<std::int64_t>();
+    if (!seed->is_integer() || !value || *value < 0) {
+      r.fail("seed", "expected an integer ≥ 0", seed);  // a negative one would wrap around
+    }
+    s.seed = static_cast<std::uint64_t>(*value);
+  }
   read_sim(r, root, s);
   if (const toml::table* terrain = root["terrain"].as_table()) {
     try {

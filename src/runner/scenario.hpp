@@ -29,6 +29,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -91,6 +92,8 @@ struct Scenario {
 
 // Throws std::invalid_argument with "FILE: key: what is wrong (line N)".
 Scenario load_scenario(const std::filesystem::path& file);
+// The same for a file's text (`file` names it in errors and anchors the terrain's image paths).
+Scenario parse_scenario(std::string_view text, const std::filesystem::path& file);
 
 // The scenario files shipped in a folder (name → path), sorted by name.
 std::vector<std::pair<std::string, std::filesystem::path>> list_scenarios(

@@ -97,6 +97,31 @@ TEST(Cli, ABrokenScenarioFileIsAUsageErrorNamingTheKey) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
+TEST(Cli, ANegativeSeedIsRefusedNotWrapped) {
+  for (const char* command : {"scenario", "run", "sim"}) {
+    std::vector<const char*> args = {"--config", kConfig.c_str(), command};
+    if (std::string(command) == "scenario") args.push_back("straight-and-spin");
+    args.push_back("--seed");
+    args.push_back("-1");
+    const Result r = cli(args);
+    EXPECT_EQ(r.status, 2) << command;
+    EXPECT_NE(r.err.find("-1 is negative; a seed is an integer ≥ 0"), std::string::npos)
+        << command << ": " << r.err;
+  }
+}
+
+TEST(Cli, ANaNInAScenarioIsAOneLineUsageError) {
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("marsokhod-cli-nan-" + std::to_string(::getpid()) + ".toml");
+  std::ofstream(file) << "duration_s = 5.0\n[[fault]]\nt = 1.0\nframe_loss = nan\n";
+  const Result r = cli({"--config", kConfig.c_str(), "scenario", file.c_str()});
+  std::filesystem::remove(file);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("fault[0].frame_loss: is not a finite number (line 4)"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
 TEST(Cli, TheShippedScenariosAreListed) {
   const Result r = cli({"--config", kConfig.c_str(), "scenario", "--list"});
   EXPECT_EQ(r.status, 0) << r.err;

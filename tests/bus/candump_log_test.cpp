@@ -74,7 +74,15 @@ TEST(CandumpLog, RejectsMalformedLines) {
   EXPECT_EQ(error_of("can0 180#00"), "expected '(time) interface ID#DATA'");
   EXPECT_EQ(error_of("1.0 can0 180#00"),
             "expected a timestamp in parentheses, e.g. (1436509052.249713), got '1.0'");
-  EXPECT_EQ(error_of("(abc) can0 180#00"), "timestamp 'abc' is not a non-negative number of seconds");
+  EXPECT_EQ(error_of("(abc) can0 180#00"),
+            "timestamp 'abc' is not a finite, non-negative number of seconds");
+  // from_chars reads these; a trace's time never is one.
+  EXPECT_EQ(error_of("(nan) can0 180#00"),
+            "timestamp 'nan' is not a finite, non-negative number of seconds");
+  EXPECT_EQ(error_of("(inf) can0 180#00"),
+            "timestamp 'inf' is not a finite, non-negative number of seconds");
+  EXPECT_EQ(error_of("(1e999) can0 180#00"),
+            "timestamp '1e999' is not a finite, non-negative number of seconds");
   EXPECT_EQ(error_of("(1.0) can0 18000"), "frame '18000' has no '#' between identifier and data");
   EXPECT_EQ(error_of("(1.0) can0 18#00"),
             "identifier '18' must have 3 hex digits (standard) or 8 (extended)");
@@ -85,6 +93,17 @@ TEST(CandumpLog, RejectsMalformedLines) {
   EXPECT_EQ(error_of("(1.0) can0 180#000102030405060708"),
             "data has 9 bytes; classic CAN carries at most 8");
   EXPECT_EQ(error_of("(1.0) can0 180##100"), "CAN FD frames (##) are not supported");
+}
+
+TEST(CandumpLog, ARemoteFramesLengthSurvivesTheRoundTrip) {
+  const auto parsed = parse_candump_line("(1.5) can0 090#R6");
+  const auto* logged = std::get_if<LoggedFrame>(&parsed);
+  ASSERT_NE(logged, nullptr);
+  EXPECT_TRUE(logged->remote);
+  EXPECT_EQ(logged->frame.dlc, 6);
+  EXPECT_EQ(format_candump_line(*logged), "(1.5) can0 090#R6");
+  EXPECT_EQ(format_candump_line(std::get<LoggedFrame>(parse_candump_line("(1.5) can0 090#R"))),
+            "(1.5) can0 090#R");
 }
 
 TEST(CandumpLog, FormatParseRoundTrip) {

@@ -143,6 +143,19 @@ TEST(SocketcandClient, RefusedChannelIsReported) {
                 " refused opening channel 'can1': could not open bus");
 }
 
+TEST(SocketcandClient, TheServersWordsAreEscapedInErrors) {
+  // A hostile server's reply must not put terminal control sequences into our messages.
+  ScriptedServer server([](TcpConnection& peer) {
+    peer.send_text("< hi >");
+    if (peer.read_message()) peer.send_text("< error \x1b]0;owned\x07\x1b[2J >");
+    peer.wait_closed();
+  });
+  const std::string error = connect_error(config_for(server.port(), "can0"));
+  EXPECT_EQ(error.find('\x1b'), std::string::npos) << error;
+  EXPECT_EQ(error.find('\x07'), std::string::npos) << error;
+  EXPECT_NE(error.find("\\x1b]0;owned\\x07\\x1b[2J"), std::string::npos) << error;
+}
+
 TEST(SocketcandClient, ConnectionRefusedIsAClearError) {
   const std::uint16_t port = testing::unused_port();
   EXPECT_EQ(connect_error(config_for(port)),

@@ -184,6 +184,55 @@ TEST(SocketcandServer, SilentClientsAreClosedAfterTheHandshakeTimeout) {
   EXPECT_TRUE(peer.wait_closed());
 }
 
+TEST(SocketcandServer, ABrowsersPostIsClosedBeforeItsBodyReachesTheBus) {
+  // Any web page can make the operator's browser POST this to 127.0.0.1:29536.
+  FrameSink sink;
+  SocketcandServer server(test_config(), [&](const protocol::CanFrame& f) { sink.push(f); });
+  server.start();
+  auto peer = raw_client(server);
+  peer.send_text(
+      "POST / HTTP/1.1\r\nHost: 127.0.0.1:29536\r\nContent-Type: text/plain\r\n"
+      "Content-Length: 48\r\n\r\n< open can0 >< rawmode >< send 180 3 03 01 2C >");
+  EXPECT_EQ(peer.read_message(), "< error an HTTP request is not socketcand; closing >");
+  EXPECT_TRUE(peer.wait_closed());
+  EXPECT_EQ(server.counters().frames_from_clients, 0u);
+  EXPECT_EQ(server.counters().clients_refused, 1u);
+}
+
+TEST(SocketcandServer, BytesOutsideMessagesBeforeOpenClose) {
+  SocketcandServer server(test_config(), nullptr);
+  server.start();
+  auto peer = raw_client(server);
+  peer.send_text("x< open can0 >");
+  EXPECT_EQ(peer.read_message(),
+            "< error unexpected text 'x' between messages before 'open': closing >");
+  EXPECT_TRUE(peer.wait_closed());
+}
+
+TEST(SocketcandServer, AnHttpRequestLineAfterOpenCloses) {
+  FrameSink sink;
+  SocketcandServer server(test_config(), [&](const protocol::CanFrame& f) { sink.push(f); });
+  server.start();
+  auto peer = raw_client_in_rawmode(server);
+  peer.send_text("GET /x HTTP/1.1\r\n\r\n< send 180 1 01 >");
+  EXPECT_EQ(peer.read_message(), "< error an HTTP request is not socketcand; closing >");
+  EXPECT_TRUE(peer.wait_closed());
+  EXPECT_EQ(server.counters().frames_from_clients, 0u);
+}
+
+TEST(SocketcandServer, AnIdleOpenedClientIsClosed) {
+  auto config = test_config();
+  config.idle_timeout = milliseconds(50);
+  SocketcandServer server(config, nullptr);
+  server.start();
+  auto peer = raw_client(server);
+  peer.send_text("< open can0 >");
+  EXPECT_EQ(peer.read_message(), "< ok >");
+  EXPECT_EQ(peer.read_message(), "< error idle for 50 ms: closing >");
+  EXPECT_TRUE(peer.wait_closed());
+  EXPECT_EQ(server.counters().clients_refused, 1u);
+}
+
 TEST(SocketcandServer, RefusesClientsBeyondTheLimit) {
   auto config = test_config();
   config.max_clients = 1;

@@ -114,8 +114,16 @@ TEST(LoadParams, ConsoleSection) {
   EXPECT_EQ(p.console.listen, "127.0.0.1:8080");
   EXPECT_EQ(p.console.token, "");
   EXPECT_EQ(p.console.status_rate_hz, 20.0);
+  EXPECT_TRUE(p.console.allowed_hosts.empty());
+  EXPECT_TRUE(p.console.allowed_origins.empty());
   const std::string e = problem_of(with_value("[console]", "token", "42"));
   EXPECT_NE(e.find("console.token: 42 is not a string"), std::string::npos) << e;
+  const Params named = parse_params(
+      with_value("[console]", "allowed_hosts", R"(["rover.local", "10.0.0.7"])"), "test.toml");
+  EXPECT_EQ(named.console.allowed_hosts, (std::vector<std::string>{"rover.local", "10.0.0.7"}));
+  const std::string not_text = problem_of(with_value("[console]", "allowed_origins", "[1]"));
+  EXPECT_NE(not_text.find("console.allowed_origins[0]: 1 is not a string"), std::string::npos)
+      << not_text;
 }
 
 TEST(LoadParams, BooleanMustBeABoolean) {
@@ -155,6 +163,17 @@ TEST(LoadParams, OutOfRangeValueIsNamedWithTheRange) {
   EXPECT_NE(e.find("motor_curve[0].icr: 4000 is out of range; allowed [255, 2047]"),
             std::string::npos)
       << e;
+}
+
+TEST(LoadParams, OperatorTimeoutIsCappedAtOneSecond) {
+  // A longer timeout lets a rover whose link dropped drive on for longer than anyone can react.
+  const std::string e = problem_of(with_value("[safety]", "operator_timeout_s", "1.5"));
+  EXPECT_NE(e.find("safety.operator_timeout_s: 1.5 is out of range; allowed [0.05, 1]"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(parse_params(with_value("[safety]", "operator_timeout_s", "1.0"), "test.toml")
+                .safety.operator_timeout_s,
+            1.0);
 }
 
 TEST(LoadParams, OutOfRangeVectorElementIsNamedByIndex) {

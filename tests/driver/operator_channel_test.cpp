@@ -59,17 +59,82 @@ TEST(OperatorChannel, GamepadAxisOutOfRangeIsRejected) {
   EXPECT_NE(e->find("axis 1"), std::string::npos) << *e;
 }
 
-TEST(OperatorChannel, StopZeroesUntilTheNextInput) {
+OperatorInput stop_from(const std::string& reason) {
+  OperatorInput stop;
+  stop.stop = true;
+  stop.stop_reason = reason;
+  return stop;
+}
+
+TEST(OperatorChannel, StopHoldsWhileTheStickStaysPushed) {
+  // The controller's console sends its reading at 20 Hz; a stop from another console must not
+  // end with the next reading when the stick is still pushed.
   const Params params;
   OperatorChannel channel(params);
   ASSERT_FALSE(channel.receive(targets(1.0), 0.0));
-  OperatorInput stop;
-  stop.stop = true;
-  ASSERT_FALSE(channel.receive(stop, 0.1));
-  EXPECT_EQ(channel.targets(0.2).v1_radps, 0.0);
-  EXPECT_FALSE(channel.timed_out(0.2));
-  ASSERT_FALSE(channel.receive(targets(0.5), 0.3));
-  EXPECT_EQ(channel.targets(0.3).v1_radps, 0.5);
+  EXPECT_FALSE(channel.stop_latched());
+  ASSERT_FALSE(channel.receive(stop_from("client 3 pressed STOP"), 0.1));
+  EXPECT_TRUE(channel.stop_latched());
+  EXPECT_EQ(channel.stop_reason(), "client 3 pressed STOP");
+  for (int k = 1; k <= 20; ++k) {
+    const double t = 0.1 + 0.05 * k;
+    ASSERT_FALSE(channel.receive(targets(1.0), t));
+    EXPECT_EQ(channel.targets(t).v1_radps, 0.0) << "at " << t << " s";
+    EXPECT_TRUE(channel.stop_latched());
+    // The pushed stick is the operator's input: no timeout, only the stop.
+    EXPECT_FALSE(channel.timed_out(t));
+  }
+}
+
+TEST(OperatorChannel, ANeutralInputReArms) {
+  const Params params;
+  OperatorChannel channel(params);
+  ASSERT_FALSE(channel.receive(targets(1.0), 0.0));
+  ASSERT_FALSE(channel.receive(stop_from(""), 0.1));
+  EXPECT_EQ(channel.stop_reason(), "stop");
+  ASSERT_FALSE(channel.receive(targets(0.5), 0.15));
+  EXPECT_EQ(channel.targets(0.15).v1_radps, 0.0);
+  ASSERT_FALSE(channel.receive(targets(0.0), 0.2));
+  EXPECT_FALSE(channel.stop_latched());
+  EXPECT_EQ(channel.stop_reason(), "stop");  // kept for the record
+  ASSERT_FALSE(channel.receive(targets(0.5), 0.25));
+  EXPECT_EQ(channel.targets(0.25).v1_radps, 0.5);
+}
+
+TEST(OperatorChannel, GaitSpeedAndJointButtonsAreNotNeutral) {
+  const Params params;
+  OperatorChannel channel(params);
+  ASSERT_FALSE(channel.receive(stop_from("take-over"), 0.0));
+  OperatorInput gait = targets(0.0);
+  gait.targets->gait = mobility::Gait::kRolking;
+  gait.targets->gait_speed = 0.3;
+  ASSERT_FALSE(channel.receive(gait, 0.05));
+  EXPECT_TRUE(channel.stop_latched());
+  EXPECT_EQ(channel.targets(0.05).gait_speed, 0.0);
+  EXPECT_EQ(channel.targets(0.05).gait, mobility::Gait::kRolking);  // the choice counts
+  OperatorInput pad;
+  pad.gamepad = mobility::GamepadState{};
+  pad.gamepad->buttons[mobility::kLeftBumper] = true;  // contract the front joint
+  ASSERT_FALSE(channel.receive(pad, 0.1));
+  EXPECT_TRUE(channel.stop_latched());
+  EXPECT_EQ(channel.targets(0.1).v6_radps, 0.0);
+  pad.gamepad->buttons[mobility::kLeftBumper] = false;
+  pad.gamepad->axes[mobility::kLeftStickY] = 0.05;  // inside the dead zone: centred
+  ASSERT_FALSE(channel.receive(pad, 0.15));
+  EXPECT_FALSE(channel.stop_latched());
+}
+
+TEST(OperatorChannel, IsNeutral) {
+  mobility::OperatorTargets t;
+  EXPECT_TRUE(is_neutral(t));
+  t.gait = mobility::Gait::kWormLike;
+  t.calibration_mode = true;
+  EXPECT_TRUE(is_neutral(t));
+  t.v7_radps = -0.1;
+  EXPECT_FALSE(is_neutral(t));
+  t.v7_radps = 0.0;
+  t.rear_joint_target_rad = 0.2;
+  EXPECT_FALSE(is_neutral(t));
 }
 
 }  // namespace

@@ -54,16 +54,47 @@ TEST(ControlArbiter, TheControllerDrivesAndOthersOnlyWatch) {
   EXPECT_EQ(arbiter.controller(), 1U);
 }
 
-TEST(ControlArbiter, AnyoneMayStop) {
+TEST(ControlArbiter, AnyoneMayStopAndAnotherConsolesStopTakesControlAway) {
   ControlArbiter arbiter;
   arbiter.on_message(1, TakeControlMessage{});
   const ArbiterOutcome outcome = arbiter.on_message(2, StopMessage{});
   ASSERT_EQ(outcome.inbound.size(), 1U);
   EXPECT_TRUE(is_stop(outcome.inbound[0]));
   EXPECT_EQ(outcome.inbound[0].client_id, 2U);
+  const std::string reason = "client 2 pressed STOP; client 1 lost control";
+  EXPECT_EQ(outcome.inbound[0].reason, reason);
   EXPECT_FALSE(outcome.error.has_value());
+  EXPECT_FALSE(arbiter.controller().has_value());
+  ASSERT_TRUE(outcome.change.has_value());
+  EXPECT_FALSE(outcome.change->controller.has_value());
+  EXPECT_EQ(outcome.change->previous, 1U);
+  EXPECT_EQ(outcome.change->reason, reason);
+  ASSERT_TRUE(outcome.stopped.has_value());
+  EXPECT_EQ(outcome.stopped->by, 2U);
+  EXPECT_EQ(outcome.stopped->reason, reason);
+  const ArbiterOutcome nobody = ControlArbiter().on_message(3, StopMessage{});
+  ASSERT_EQ(nobody.inbound.size(), 1U);
+  EXPECT_EQ(nobody.inbound[0].reason, "client 3 pressed STOP");
+  EXPECT_FALSE(nobody.change.has_value());
+}
+
+TEST(ControlArbiter, TheControllersOwnStopKeepsControl) {
+  ControlArbiter arbiter;
+  arbiter.on_message(1, TakeControlMessage{});
+  const ArbiterOutcome outcome = arbiter.on_message(1, StopMessage{});
   EXPECT_EQ(arbiter.controller(), 1U);
-  EXPECT_EQ(ControlArbiter().on_message(3, StopMessage{}).inbound.size(), 1U);
+  EXPECT_FALSE(outcome.change.has_value());
+  ASSERT_TRUE(outcome.stopped.has_value());
+  EXPECT_EQ(outcome.stopped->reason, "client 1 pressed STOP");
+}
+
+TEST(ControlArbiter, EveryServerMadeStopIsNoticed) {
+  ControlArbiter arbiter;
+  EXPECT_EQ(arbiter.on_message(1, TakeControlMessage{}).stopped->reason, "client 1 took control");
+  EXPECT_EQ(arbiter.on_message(1, ReleaseControlMessage{}).stopped->reason,
+            "client 1 released control");
+  arbiter.on_message(2, TakeControlMessage{});
+  EXPECT_EQ(arbiter.on_disconnect(2).stopped->reason, "controller client 2 disconnected");
 }
 
 TEST(ControlArbiter, TakingOverNamesThePreviousController) {
@@ -87,6 +118,8 @@ TEST(ControlArbiter, TakingControlAgainChangesNothing) {
   ASSERT_TRUE(again.change.has_value());
   EXPECT_EQ(again.change->controller, 1U);
   EXPECT_EQ(again.change->previous, 1U);
+  EXPECT_TRUE(again.change_to_sender_only);  // a flood of these reaches nobody else
+  EXPECT_FALSE(again.stopped.has_value());
 }
 
 TEST(ControlArbiter, ReleasingStopsAndFreesControl) {

@@ -87,7 +87,8 @@ TEST_F(LinkServerHttpTest, AllowsOnlyGetAndHead) {
 }
 
 TEST_F(LinkServerHttpTest, AUpgradeElsewhereThanWsIs404) {
-  testing::TestClient client(server_->port(), "/socket?token=" + server_->token());
+  testing::TestClient client(server_->port(), "/socket",
+                             {{"Authorization", "Bearer " + server_->token()}});
   EXPECT_FALSE(client.open());
   EXPECT_EQ(client.handshake_response().result_int(), 404);
 }

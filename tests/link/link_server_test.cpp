@@ -1,10 +1,13 @@
 // The server on loopback with real WebSocket clients: the token, the control rules as the
 // consoles see them, the controller's disconnect as a stop, status to every client (coalesced),
-// errors that name the field, and the bounded queues. Every wait has a deadline (test_client.hpp).
+// errors that name the field, the bounded queues, stale input, rate limits and failed handlers.
+// Every wait has a deadline (test_client.hpp).
 #include "link/link_server.hpp"
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <stdexcept>
 #include <thread>
 
 #include "test_client.hpp"
@@ -26,7 +29,8 @@ class LinkServerTest : public ::testing::Test {
     server_->start();
   }
   std::unique_ptr<TestClient> connect(const std::string& token = kToken) {
-    return std::make_unique<TestClient>(server_->port(), "/ws?token=" + token);
+    return std::make_unique<TestClient>(server_->port(), "/ws",
+                                        testing::Headers{{"Authorization", "Bearer " + token}});
   }
   // A connected client and its hello.
   std::pair<std::unique_ptr<TestClient>, nlohmann::json> console() {
@@ -59,17 +63,35 @@ class LinkServerTest : public ::testing::Test {
   std::unique_ptr<LinkServer> server_;
 };
 
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// A reading as the console sends it: seq counting up (one counter for all clients is still
+// increasing for each), sent now.
 nlohmann::json gamepad(double left_stick_y) {
+  static std::atomic<std::uint64_t> seq{0};
   return {{"type", "gamepad"},
+          {"seq", ++seq},
+          {"sent_ms", now_ms()},
           {"axes", {0.0, left_stick_y, 0.0, 0.0}},
           {"buttons", std::vector<bool>(17, false)}};
+}
+
+nlohmann::json stamped(double left_stick_y, std::uint64_t seq, double sent_ms) {
+  nlohmann::json message = gamepad(left_stick_y);
+  message["seq"] = seq;
+  message["sent_ms"] = sent_ms;
+  return message;
 }
 
 TEST_F(LinkServerTest, GreetsAClientWithTheRightToken) {
   start();
   auto [client, hello] = console();
   EXPECT_EQ(hello["type"], "hello");
-  EXPECT_EQ(hello["protocol"], 1);
+  EXPECT_EQ(hello["protocol"], 2);
   EXPECT_GE(hello["client_id"].get<int>(), 1);
   EXPECT_TRUE(hello["controller"].is_null());
   EXPECT_EQ(hello["read_only"], true);
@@ -77,18 +99,33 @@ TEST_F(LinkServerTest, GreetsAClientWithTheRightToken) {
   EXPECT_NE(server_->console_url().find("/?token=" + std::string(kToken)), std::string::npos);
 }
 
-TEST_F(LinkServerTest, RefusesAWrongOrMissingTokenWith401) {
-  start();
-  for (const std::string target : {"/ws?token=wrong-token-0123456789", "/ws", "/ws?token="}) {
-    TestClient client(server_->port(), target);
-    EXPECT_FALSE(client.open()) << target;
-    EXPECT_EQ(client.error(), testing::websocket::error::upgrade_declined) << target;
-    EXPECT_EQ(client.handshake_response().result_int(), 401) << target;
+TEST_F(LinkServerTest, RefusesAWrongOrMissingTokenWith401ThenBacksOff) {
+  ServerOptions options;
+  options.auth_backoff_first_s = 60.0;  // the second try certainly falls within it
+  start(options);
+  TestClient wrong(server_->port(), "/ws",
+                   testing::Headers{{"Authorization", "Bearer wrong-token-0123456789"}});
+  EXPECT_FALSE(wrong.open());
+  EXPECT_EQ(wrong.error(), testing::websocket::error::upgrade_declined);
+  EXPECT_EQ(wrong.handshake_response().result_int(), 401);
+  // The same address again, even with the right token: refused unseen until the back-off ends.
+  for (const std::string token : {"", kToken}) {
+    TestClient next(server_->port(), "/ws", testing::Headers{{"Authorization", "Bearer " + token}});
+    EXPECT_FALSE(next.open()) << token;
+    EXPECT_EQ(next.handshake_response().result_int(), 429) << token;
   }
-  EXPECT_EQ(server_->stats().unauthorized, 3U);
+  EXPECT_EQ(server_->stats().unauthorized, 1U);
+  EXPECT_EQ(server_->stats().auth_throttled, 2U);
   EXPECT_EQ(server_->stats().clients, 0U);
   const auto response = testing::http_request(server_->port(), testing::http::verb::get, "/ws");
   EXPECT_EQ(response.result_int(), 404);  // not an upgrade, and no file of that name
+}
+
+TEST_F(LinkServerTest, TheTokenInTheQueryNoLongerOpensAWebSocket) {
+  start();
+  TestClient client(server_->port(), std::string("/ws?token=") + kToken);
+  EXPECT_FALSE(client.open());
+  EXPECT_EQ(client.handshake_response().result_int(), 401);
 }
 
 TEST_F(LinkServerTest, ASecondClientIsReadOnlyUntilItTakesControl) {
@@ -126,17 +163,125 @@ TEST_F(LinkServerTest, ASecondClientIsReadOnlyUntilItTakesControl) {
   EXPECT_EQ(std::get<GamepadMessage>(inbound[0].message).axes[1], -0.5);
 }
 
-TEST_F(LinkServerTest, AnyClientMayStop) {
+TEST_F(LinkServerTest, AnyClientMayStopAndAStopFromAnotherTakesControlAway) {
   start();
   auto [controller, controller_hello] = console();
   take_control(*controller);
   auto [watcher, watcher_hello] = console();
+  const auto watcher_id = watcher_hello["client_id"].get<ClientId>();
+  const auto controller_id = controller_hello["client_id"].get<ClientId>();
   ASSERT_TRUE(watcher->send(nlohmann::json{{"type", "stop"}}));
   const auto inbound = wait_inbound(1);
   ASSERT_EQ(inbound.size(), 1U);
   EXPECT_TRUE(std::holds_alternative<StopMessage>(inbound[0].message));
-  EXPECT_EQ(inbound[0].client_id, watcher_hello["client_id"].get<ClientId>());
-  EXPECT_EQ(server_->stats().controller, controller_hello["client_id"].get<ClientId>());
+  EXPECT_EQ(inbound[0].client_id, watcher_id);
+  const std::string reason = "client " + std::to_string(watcher_id) + " pressed STOP; client " +
+                             std::to_string(controller_id) + " lost control";
+  EXPECT_EQ(inbound[0].reason, reason);
+  EXPECT_FALSE(server_->stats().controller.has_value());
+  const auto lost = controller->receive_type("control");
+  ASSERT_TRUE(lost.has_value());
+  EXPECT_EQ((*lost)["lost_control"], true);
+  EXPECT_EQ((*lost)["reason"], reason);
+  // Every console is told who stopped and why.
+  for (TestClient* client : {controller.get(), watcher.get()}) {
+    const auto stopped = client->receive_type("stopped");
+    ASSERT_TRUE(stopped.has_value());
+    EXPECT_EQ((*stopped)["by"], watcher_id);
+    EXPECT_EQ((*stopped)["reason"], reason);
+  }
+  // The former controller's readings are refused now.
+  ASSERT_TRUE(controller->send(gamepad(-1.0)));
+  EXPECT_EQ(controller->receive_type("error").value_or(nlohmann::json{})["message"],
+            "read-only: take control first");
+}
+
+TEST_F(LinkServerTest, TheControllersOwnStopKeepsControl) {
+  start();
+  auto [controller, hello] = console();
+  take_control(*controller);
+  ASSERT_TRUE(controller->send(nlohmann::json{{"type", "stop"}}));
+  const auto inbound = wait_inbound(1);
+  ASSERT_EQ(inbound.size(), 1U);
+  EXPECT_EQ(inbound[0].reason, "client " + hello["client_id"].dump() + " pressed STOP");
+  EXPECT_TRUE(controller->receive_type("stopped").has_value());
+  EXPECT_EQ(server_->stats().controller, hello["client_id"].get<ClientId>());
+}
+
+TEST_F(LinkServerTest, StaleAndOutOfOrderReadingsAreDropped) {
+  start();
+  auto [client, hello] = console();
+  take_control(*client);
+  const double t = now_ms();
+  ASSERT_TRUE(client->send(stamped(-0.1, 10, t)));
+  ASSERT_TRUE(client->send(stamped(-0.2, 11, t - 5000.0)));  // held up 5 s in a stall
+  ASSERT_TRUE(client->send(stamped(-0.3, 11, now_ms())));    // seq repeated
+  ASSERT_TRUE(client->send(stamped(-0.4, 9, now_ms())));     // seq going back
+  ASSERT_TRUE(client->send(stamped(-0.5, 12, now_ms())));
+  ASSERT_TRUE(client->send(nlohmann::json{{"type", "ping"}}));
+  ASSERT_TRUE(client->receive_type("pong").has_value());  // all five handled
+  const auto inbound = server_->take_inbound();
+  ASSERT_EQ(inbound.size(), 2U);
+  EXPECT_EQ(std::get<GamepadMessage>(inbound[0].message).axes[1], -0.1);
+  EXPECT_EQ(std::get<GamepadMessage>(inbound[1].message).axes[1], -0.5);
+  EXPECT_EQ(server_->stats().stale_dropped, 3U);
+}
+
+TEST_F(LinkServerTest, MessagesBeyondTheRateAreDroppedAndCounted) {
+  ServerOptions options;
+  options.message_rate_per_s = 1e-6;  // no refill within the test: exactly the burst passes
+  options.message_burst = 5.0;
+  start(options);
+  auto [client, hello] = console();
+  for (int i = 0; i < 20; ++i) ASSERT_TRUE(client->send(nlohmann::json{{"type", "ping"}}));
+  int pongs = 0;
+  while (client->receive_type("pong", 300ms).has_value()) ++pongs;
+  EXPECT_EQ(pongs, 5);
+  EXPECT_EQ(server_->stats().rate_limited, 15U);
+}
+
+TEST_F(LinkServerTest, ATakeControlFloodIsNotReBroadcast) {
+  start();
+  auto [holder, holder_hello] = console();
+  auto [watcher, watcher_hello] = console();
+  for (int i = 0; i < 20; ++i) {
+    ASSERT_TRUE(holder->send(nlohmann::json{{"type", "take_control"}}));
+  }
+  ASSERT_TRUE(holder->send(nlohmann::json{{"type", "ping"}}));
+  ASSERT_TRUE(holder->receive_type("pong").has_value());
+  ASSERT_TRUE(watcher->send(nlohmann::json{{"type", "ping"}}));
+  int controls = 0;
+  for (;;) {
+    const auto message = watcher->receive();
+    ASSERT_TRUE(message.has_value());
+    if ((*message)["type"] == "pong") break;
+    if ((*message)["type"] == "control") ++controls;
+  }
+  EXPECT_EQ(controls, 1);  // the first take; the repeats went to the holder alone
+  EXPECT_EQ(server_->stats().rate_limited, 20U - 8U);  // control_burst 8
+}
+
+TEST_F(LinkServerTest, AFailingHandlerClosesItsSessionAndStopsTheRover) {
+  ServerOptions options;
+  options.message_observer = [](ClientId, std::string_view text) {
+    if (text == "boom") throw std::runtime_error("injected failure");
+  };
+  start(options);
+  auto [controller, hello] = console();
+  take_control(*controller);
+  auto [watcher, watcher_hello] = console();
+  ASSERT_TRUE(controller->send(std::string("boom")));
+  EXPECT_TRUE(controller->wait_closed());
+  const auto inbound = wait_inbound(1);
+  ASSERT_EQ(inbound.size(), 1U);
+  EXPECT_TRUE(std::holds_alternative<StopMessage>(inbound[0].message));
+  EXPECT_NE(inbound[0].reason.find("disconnected"), std::string::npos) << inbound[0].reason;
+  const auto control = watcher->receive_type("control");
+  ASSERT_TRUE(control.has_value());
+  EXPECT_TRUE((*control)["controller"].is_null());
+  EXPECT_EQ(server_->stats().handler_failures, 1U);
+  auto [next, next_hello] = console();  // and it serves on
+  EXPECT_EQ(next_hello["type"], "hello");
 }
 
 TEST_F(LinkServerTest, TheControllersDisconnectBecomesAStop) {
@@ -253,7 +398,8 @@ TEST_F(LinkServerTest, RefusesClientsBeyondTheLimitWith503) {
   options.max_clients = 1;
   start(options);
   auto [first, hello] = console();
-  TestClient second(server_->port(), std::string("/ws?token=") + kToken);
+  TestClient second(server_->port(), "/ws",
+                    testing::Headers{{"Authorization", std::string("Bearer ") + kToken}});
   EXPECT_FALSE(second.open());
   EXPECT_EQ(second.handshake_response().result_int(), 503);
 }

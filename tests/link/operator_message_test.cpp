@@ -34,7 +34,8 @@ OperatorMessage message_from(const std::string& text) {
 }
 
 std::string gamepad_text(const std::string& axes, const std::string& buttons) {
-  return R"({"type":"gamepad","axes":)" + axes + R"(,"buttons":)" + buttons + "}";
+  return R"({"type":"gamepad","seq":1,"sent_ms":0,"axes":)" + axes + R"(,"buttons":)" + buttons +
+         "}";
 }
 
 const std::string kButtons =
@@ -66,7 +67,9 @@ TEST(OperatorMessage, RoundTripsEveryMessageType) {
   gamepad.buttons[mobility::kDpadUp] = true;
   gamepad.buttons[mobility::kHome] = true;
   expect_round_trip(gamepad);
-  expect_round_trip(TargetsMessage{2.25, -1.5, 1.0, 2.827, -0.5,
+  gamepad.stamp = {9007199254740991U, 1.7e12 + 0.25};
+  expect_round_trip(gamepad);
+  expect_round_trip(TargetsMessage{{7, 12.5}, 2.25, -1.5, 1.0, 2.827, -0.5,
                                    mobility::Gait::kRolkingExtendedBase, -1.0, true});
   expect_round_trip(TargetsMessage{});
   expect_round_trip(StopMessage{});
@@ -96,8 +99,10 @@ TEST(OperatorMessage, RoundTripsEveryGait) {
 }
 
 TEST(OperatorMessage, TargetsLeftOutAreZeroNoneAndFalse) {
-  const auto message = message_from(R"({"type":"targets","v2":-1.5,"gait":"worm-like"})");
+  const auto message =
+      message_from(R"({"type":"targets","seq":1,"sent_ms":0,"v2":-1.5,"gait":"worm-like"})");
   TargetsMessage expected;
+  expected.stamp.seq = 1;
   expected.v2_radps = -1.5;
   expected.gait = mobility::Gait::kWormLike;
   EXPECT_EQ(std::get<TargetsMessage>(message), expected);
@@ -127,14 +132,14 @@ TEST(OperatorMessage, RejectsNanAndInfinityLiteralsAsMalformed) {
 }
 
 TEST(OperatorMessage, RejectsANumberBeyondDoublesRange) {
-  const MessageError error = error_of(R"({"type":"targets","v1":1e999})");
+  const MessageError error = error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v1":1e999})");
   EXPECT_EQ(error.field, "json");
   EXPECT_NE(error.message.find("overflow"), std::string::npos) << error.message;
-  EXPECT_EQ(error_of(R"({"type":"targets","v1":-1e400})").field, "json");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v1":-1e400})").field, "json");
 }
 
 TEST(OperatorMessage, RejectsLargeIntegersAsOutOfRange) {
-  EXPECT_EQ(error_of(R"({"type":"targets","v1":18446744073709551616})").field, "v1");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v1":18446744073709551616})").field, "v1");
   EXPECT_EQ(error_of(R"({"type":"configure","speed_scale":-9223372036854775808})").field,
             "speed_scale");
 }
@@ -151,7 +156,7 @@ TEST(OperatorMessage, RejectsMissingOrUnknownTypes) {
 TEST(OperatorMessage, RejectsUnknownFieldsInEveryMessage) {
   EXPECT_EQ(error_of(R"({"type":"stop","now":true})").field, "now");
   EXPECT_EQ(error_of(R"({"type":"ping","t":1})").field, "t");
-  EXPECT_EQ(error_of(R"({"type":"targets","v3":0})").field, "v3");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v3":0})").field, "v3");
   EXPECT_EQ(error_of(R"({"type":"configure","max_drop":1})").field, "max_drop");
   EXPECT_EQ(error_of(R"({"type":"configure","behaviours":{"gaits":true}})").field,
             "behaviours.gaits");
@@ -192,31 +197,52 @@ TEST(OperatorMessage, RejectsWrongGamepadShapesAndTypes) {
   EXPECT_EQ(error.field, "buttons[16]");
   EXPECT_NE(error.message.find("expected true or false, got a number 1"), std::string::npos)
       << error.message;
-  EXPECT_EQ(error_of(R"({"type":"gamepad","buttons":[]})").field, "axes");
-  EXPECT_EQ(error_of(R"({"type":"gamepad","axes":[0,0,0,0]})").field, "buttons");
+  EXPECT_EQ(error_of(R"({"type":"gamepad","seq":1,"sent_ms":0,"buttons":[]})").field, "axes");
+  EXPECT_EQ(error_of(R"({"type":"gamepad","seq":1,"sent_ms":0,"axes":[0,0,0,0]})").field,
+            "buttons");
 }
 
 TEST(OperatorMessage, RejectsTargetsOutOfTheConfiguredRanges) {
-  const MessageError v1 = error_of(R"({"type":"targets","v1":2.3})");
+  const MessageError v1 = error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v1":2.3})");
   EXPECT_EQ(v1.field, "v1");
   EXPECT_EQ(v1.message, "v1: 2.3 is out of range; allowed \u22122.25..2.25 rad/s");
-  EXPECT_EQ(error_of(R"({"type":"targets","v2":-1.6})").field, "v2");
-  EXPECT_EQ(error_of(R"({"type":"targets","v4":1.01})").field, "v4");
-  EXPECT_EQ(error_of(R"({"type":"targets","v6":2.9})").field, "v6");
-  EXPECT_EQ(error_of(R"({"type":"targets","v7":-2.9})").field, "v7");
-  EXPECT_EQ(error_of(R"({"type":"targets","gait_speed":1.5})").field, "gait_speed");
-  EXPECT_EQ(error_of(R"({"type":"targets","v1":"fast"})").field, "v1");
-  EXPECT_EQ(error_of(R"({"type":"targets","calibration_mode":1})").field, "calibration_mode");
-  EXPECT_EQ(error_of(R"({"type":"targets","gait":3})").field, "gait");
-  const MessageError gait = error_of(R"({"type":"targets","gait":"front-wheel walking"})");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v2":-1.6})").field, "v2");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v4":1.01})").field, "v4");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v6":2.9})").field, "v6");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v7":-2.9})").field, "v7");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"gait_speed":1.5})").field, "gait_speed");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v1":"fast"})").field, "v1");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"calibration_mode":1})").field, "calibration_mode");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"gait":3})").field, "gait");
+  const MessageError gait = error_of(R"({"type":"targets","seq":1,"sent_ms":0,"gait":"front-wheel walking"})");
   EXPECT_EQ(gait.field, "gait");
   EXPECT_NE(gait.message.find("front-wheel-walking"), std::string::npos) << gait.message;
+}
+
+TEST(OperatorMessage, GamepadAndTargetsCarryASequenceNumberAndASendTime) {
+  const auto message = message_from(R"({"type":"targets","seq":42,"sent_ms":1700000000123.5})");
+  EXPECT_EQ(std::get<TargetsMessage>(message).stamp, (InputStamp{42, 1700000000123.5}));
+  EXPECT_EQ(input_stamp(message), (InputStamp{42, 1700000000123.5}));
+  EXPECT_FALSE(input_stamp(StopMessage{}).has_value());
+  const MessageError missing = error_of(R"({"type":"targets","sent_ms":0})");
+  EXPECT_EQ(missing.field, "seq");
+  EXPECT_NE(missing.message.find("seq: missing"), std::string::npos) << missing.message;
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1})").field, "sent_ms");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1.5,"sent_ms":0})").message,
+            "seq: expected an integer, got 1.5");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":-1,"sent_ms":0})").field, "seq");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":9007199254740992,"sent_ms":0})").field, "seq");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":"1","sent_ms":0})").field, "seq");
+  EXPECT_EQ(error_of(R"({"type":"gamepad","seq":1,"sent_ms":-5,"axes":[0,0,0,0],"buttons":[]})")
+                .field,
+            "sent_ms");
+  EXPECT_EQ(error_of(R"({"type":"stop","seq":1})").field, "seq");  // a stop is never stale
 }
 
 TEST(OperatorMessage, TargetRangesFollowTheParams) {
   Params fast;
   fast.operator_input.max_drive_speed_radps = 2.5;
-  const std::string text = R"({"type":"targets","v1":2.3})";
+  const std::string text = R"({"type":"targets","seq":1,"sent_ms":0,"v1":2.3})";
   EXPECT_TRUE(message_of(parse_operator_message(text, fast)).has_value());
   EXPECT_FALSE(message_of(parse_operator_message(text, kParams)).has_value());
 }
@@ -246,7 +272,7 @@ TEST(OperatorMessage, MapsToTheDriversInput) {
   const auto gamepad = operator_input(message_from(gamepad_text("[0, -1, 0, 0]", kButtons)));
   ASSERT_TRUE(gamepad && gamepad->gamepad);
   EXPECT_EQ(gamepad->gamepad->axes[1], -1.0);
-  const auto targets = operator_input(TargetsMessage{1.0, 0, 0, 0, 0.5, mobility::Gait::kRolking,
+  const auto targets = operator_input(TargetsMessage{{}, 1.0, 0, 0, 0, 0.5, mobility::Gait::kRolking,
                                                      0.25, false});
   ASSERT_TRUE(targets && targets->targets);
   EXPECT_EQ(targets->targets->v1_radps, 1.0);

@@ -9,7 +9,7 @@ namespace {
 TEST(ServerMessages, HelloSaysWhoHoldsControlAndWhichCalibrationTheDriverLoaded) {
   EXPECT_EQ(hello_json(3, std::nullopt),
             nlohmann::json::parse(
-                R"({"type":"hello","protocol":1,"client_id":3,"controller":null,"read_only":true,
+                R"({"type":"hello","protocol":2,"client_id":3,"controller":null,"read_only":true,
                     "calibration":{"file":null,"procedures":[]}})"));
   EXPECT_EQ(hello_json(3, 1)["controller"], 1);
   const nlohmann::json calibrated =
@@ -36,6 +36,8 @@ TEST(ServerMessages, ErrorsPongAndStatus) {
   EXPECT_EQ(error_json({"axes[1]", "too big"}),
             nlohmann::json::parse(R"({"type":"error","field":"axes[1]","message":"too big"})"));
   EXPECT_EQ(pong_json(), nlohmann::json::parse(R"({"type":"pong"})"));
+  EXPECT_EQ(stopped_json({3, "client 3 pressed STOP"}),
+            nlohmann::json::parse(R"({"type":"stopped","by":3,"reason":"client 3 pressed STOP"})"));
   EXPECT_EQ(status_envelope({{"cycle", 4}})["status"]["cycle"], 4);
   EXPECT_EQ(status_envelope({{"cycle", 4}})["type"], "status");
 }

@@ -8,6 +8,8 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <boost/asio/connect.hpp>
 #include <boost/asio/io_context.hpp>
@@ -35,14 +37,21 @@ inline bool run_until(asio::io_context& io, const bool& done, std::chrono::milli
   return done;
 }
 
+using Headers = std::vector<std::pair<std::string, std::string>>;
+
 inline asio::ip::tcp::endpoint loopback(std::uint16_t port) {
   return {asio::ip::make_address("127.0.0.1"), port};
 }
 
 class TestClient {
  public:
-  // Connects and asks for the upgrade at `target`; open() tells whether the server accepted.
-  TestClient(std::uint16_t port, const std::string& target) : ws_(io_) {
+  // Connects and asks for the upgrade at `target` with `headers` (Authorization, Cookie,
+  // Origin, Host); open() tells whether the server accepted.
+  TestClient(std::uint16_t port, const std::string& target, const Headers& headers = {})
+      : ws_(io_) {
+    ws_.set_option(websocket::stream_base::decorator([headers](websocket::request_type& request) {
+      for (const auto& [name, value] : headers) request.set(name, value);
+    }));
     bool done = false;
     beast::get_lowest_layer(ws_).async_connect(loopback(port), [&](beast::error_code error) {
       error_ = error;
@@ -136,11 +145,13 @@ class TestClient {
 
 // One HTTP request on a fresh connection; the response, or a 599 one if none came in time.
 inline http::response<http::string_body> http_request(std::uint16_t port, http::verb method,
-                                                      const std::string& target) {
+                                                      const std::string& target,
+                                                      const Headers& headers = {}) {
   asio::io_context io;
   beast::tcp_stream stream(io);
   http::request<http::empty_body> request{method, target, 11};
   request.set(http::field::host, "127.0.0.1");
+  for (const auto& [name, value] : headers) request.set(name, value);
   http::response<http::string_body> response;
   http::response_parser<http::string_body> parser;
   parser.skip(method == http::verb::head);  // a HEAD response has a length but no body

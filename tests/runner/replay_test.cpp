@@ -2,6 +2,7 @@
 // replays bit for bit, a tampered one does not, its telemetry has what the plots read, and a
 // CAN tool nobody here wrote (python-can) reads its can.log.
 #include "runner/replay.hpp"
+#include "runner/operator_log.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -74,6 +75,20 @@ TEST(Replay, ARecordingReplaysBitForBit) {
   EXPECT_TRUE(replayed.identical) << replayed.first_difference;
   EXPECT_EQ(replayed.cycles, lines_of(run / "operator.jsonl").size());
   EXPECT_GT(replayed.frames_compared, 9u * 200u);  // 8 motor requests and µ8's, each cycle
+}
+
+TEST(Replay, AStopKeepsItsReasonInTheRecording) {
+  // The driver shows who stopped (DriverStatus::stop_reason): operator.jsonl keeps it, so a
+  // replayed run holds the same stop for the same reason.
+  driver::OperatorInput stop;
+  stop.stop = true;
+  stop.stop_reason = "client 3 pressed STOP; client 1 lost control";
+  const nlohmann::json line = to_json(stop);
+  EXPECT_EQ(line["stop_reason"], stop.stop_reason);
+  const driver::OperatorInput back = operator_input_from_json(line);
+  EXPECT_TRUE(back.stop);
+  EXPECT_EQ(back.stop_reason, stop.stop_reason);
+  EXPECT_FALSE(to_json(driver::OperatorInput{}).contains("stop_reason"));
 }
 
 TEST(Replay, ATamperedCanLogIsDifferent) {

@@ -152,6 +152,38 @@ TEST(Scenario, BadPhasesNameTheKeyAndLine) {
   EXPECT_TRUE(names(error_of("phase = 3\n"), "phase", 1));
 }
 
+TEST(Scenario, NaNOrInfinityAnywhereNamesTheKeyAndLine) {
+  // toml reads nan and inf; none of them means anything in a scenario.
+  EXPECT_TRUE(names(error_of("[[fault]]\nt = nan\n"), "fault[0].t", 2));
+  EXPECT_TRUE(names(error_of("[sim]\nstate_of_charge = inf\n"), "sim.state_of_charge", 2));
+  EXPECT_TRUE(names(error_of("[[fault]]\nt = 1.0\nbattery_sag_ohm = -inf\n"),
+                    "fault[0].battery_sag_ohm", 3));
+  EXPECT_TRUE(names(error_of("[[input]]\nt = 1.0\ntargets = { v1 = nan }\n"),
+                    "input[0].targets.v1", 3));
+  EXPECT_TRUE(names(error_of("[[input]]\nt = 1.0\ngamepad = { axes = [0.0, nan, 0.0, 0.0] }\n"),
+                    "input[0].gamepad.axes[1]", 3));
+  const std::string e = error_of("[[input]]\nt = nan\n");
+  EXPECT_NE(e.find("is not a finite number"), std::string::npos) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;  // one line
+}
+
+TEST(Scenario, OutOfRangeFaultValuesNameTheKeyTheRangeAndTheLine) {
+  std::string e = error_of("[[fault]]\nt = 1.0\nframe_loss = 1.5\n");
+  EXPECT_TRUE(names(e, "fault[0].frame_loss", 3));
+  EXPECT_NE(e.find("1.5 is out of range; allowed [0, 1]"), std::string::npos) << e;
+  EXPECT_TRUE(names(error_of("[[fault]]\nt = 1.0\nbattery_sag_ohm = -0.5\n"),
+                    "fault[0].battery_sag_ohm", 3));
+  EXPECT_TRUE(names(error_of("[[fault]]\nlost_pulses = { motor = 2, fraction = 2.0 }\n"),
+                    "fault[0].lost_pulses.fraction", 2));
+  EXPECT_TRUE(names(error_of("duration_s = 5.0\n[[fault]]\nt = 9.0\n"), "fault[0].t", 3));
+  EXPECT_TRUE(names(error_of("[sim]\nstate_of_charge = 1.2\n"), "sim.state_of_charge", 2));
+}
+
+TEST(Scenario, ANegativeSeedIsRefused) {
+  EXPECT_TRUE(names(error_of("seed = -3\n"), "seed", 1));
+  EXPECT_TRUE(names(error_of("seed = 1.5\n"), "seed", 1));
+}
+
 TEST(Scenario, ABadInputNamesItsLine) {
   const std::string e = error_of("[[input]]\nt = 1.0\ntargets = { gait = \"hop\" }\n");
   EXPECT_TRUE(names(e, "input[0]", 1));

@@ -5,7 +5,13 @@
 //   in-control    connected, this console drives
 //   disconnected  the connection ended or could not be opened; a retry is scheduled
 // Events (EventTarget, `event.detail`): "state" {state}, "status" {status}, "error" {text},
-// "control" {message}, "pong" {rtt_ms}.
+// "control" {message}, "stopped" {by, reason}, "pong" {rtt_ms}.
+//
+// The page's address carries the token once (?token=… as the server printed it): exchangeToken
+// trades it for an HttpOnly session cookie (POST /session) and takes it out of the address bar,
+// so it stays out of the history, bookmarks and screenshots; the WebSocket then goes with the
+// cookie. Gamepad and targets messages carry `seq` (from 1 on each connection) and `sent_ms`, so
+// that the server can drop readings held up in a network stall.
 
 const RETRY_FIRST_MS = 500;
 const RETRY_MAX_MS = 5000;
@@ -15,14 +21,37 @@ const PING_PERIOD_MS = 2000;
 const LATE_READ_ONLY_MS = 1000;
 const READ_ONLY_ERROR = 'read-only: take control first';
 
-// ws(s)://host/ws?token=… next to the page, so that a console served under a path prefix (a
-// reverse proxy) still finds its server.
-export function websocketUrl(location, token) {
+// ws(s)://host/ws next to the page, so that a console served under a path prefix (a reverse
+// proxy) still finds its server.
+export function websocketUrl(location) {
   const url = new URL('ws', location.href);
   url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
-  url.search = '?token=' + encodeURIComponent(token);
+  url.search = '';
   url.hash = '';
   return url.href;
+}
+
+// The page's address without its token (other query parameters and the fragment stay).
+export function addressWithoutToken(href) {
+  const url = new URL(href);
+  url.searchParams.delete('token');
+  return url.pathname + url.search + url.hash;
+}
+
+// POST /session next to the page with the token: the server answers with the session cookie.
+// Resolves to null on success, else to what went wrong.
+export async function exchangeToken(location, token) {
+  let response;
+  try {
+    response = await fetch(new URL('session', location.href), {
+      method: 'POST', headers: { Authorization: `Bearer ${token}` }, credentials: 'same-origin',
+    });
+  } catch (err) {
+    return `cannot reach the server: ${err.message}`;
+  }
+  if (response.ok) return null;
+  const text = (await response.text()).trim();
+  return `the server refused the token (HTTP ${response.status}): ${text}`;
 }
 
 export class Link extends EventTarget {
@@ -40,6 +69,7 @@ export class Link extends EventTarget {
     this.everOpened = false;
     this.closedByUser = false;
     this.lostControlAt = -Infinity;
+    this.seq = 0;
   }
 
   connect() {
@@ -54,6 +84,7 @@ export class Link extends EventTarget {
       return;
     }
     this.socket = socket;
+    this.seq = 0;  // the server counts each connection's sequence afresh
     let opened = false;
     socket.addEventListener('open', () => {
       opened = true;
@@ -72,8 +103,8 @@ export class Link extends EventTarget {
       if (!opened) {
         // The browser hides the HTTP answer of a refused upgrade (401 for a bad token, 503 when
         // full); say what the likely causes are.
-        this.reportError('the server refused the connection or cannot be reached: check the ' +
-          'token in the page address (?token=… as printed by the server) and that the server runs');
+        this.reportError('the server refused the connection or cannot be reached: open the ' +
+          'address the server printed (http://…/?token=…) and check that the server runs');
       } else if (!this.closedByUser) {
         const why = event.reason ? `: ${event.reason}` : '';
         this.reportError(`connection closed (code ${event.code}${why}); reconnecting`);
@@ -98,6 +129,14 @@ export class Link extends EventTarget {
   send(message) {
     if (!this.socket || this.socket.readyState !== WebSocket.OPEN) return false;
     this.socket.send(JSON.stringify(message));
+    return true;
+  }
+
+  // A gamepad or targets message, stamped with its place in the stream and the time it left.
+  sendInput(message) {
+    const sentMs = performance.timeOrigin + performance.now();  // monotonic, unlike Date.now()
+    if (!this.send({ ...message, seq: this.seq + 1, sent_ms: sentMs })) return false;
+    this.seq += 1;
     return true;
   }
 
@@ -130,6 +169,9 @@ export class Link extends EventTarget {
       case 'control':
         this.applyControl(message);
         this.emit('control', { message });
+        break;
+      case 'stopped':
+        this.emit('stopped', { by: message.by, reason: String(message.reason) });
         break;
       case 'status':
         this.emit('status', { status: message.status });

@@ -3,7 +3,7 @@
 // rover after 0.5 s without input (docs/operator-protocol.md, "Control").
 
 import './style.css';
-import { Link, websocketUrl } from './link.js';
+import { Link, websocketUrl, exchangeToken, addressWithoutToken } from './link.js';
 import { pollGamepad, mergeReadings, gamepadMessage, neutralReading } from './gamepad.js';
 import { Keyboard } from './keyboard.js';
 import { StatusPanel } from './status.js';
@@ -18,7 +18,7 @@ const BUTTON_NAMES = ['A', 'B', 'X', 'Y', 'LB', 'RB', 'LT', 'RT', 'back', 'start
 const $ = (id) => document.getElementById(id);
 
 const token = new URLSearchParams(location.search).get('token');
-const link = new Link(websocketUrl(location, token ?? ''));
+const link = new Link(websocketUrl(location));
 const statusPanel = new StatusPanel(document);
 const plots = new Plots($('plot-area'));
 const view = new RoverView($('view3d'));
@@ -44,6 +44,15 @@ function isNeutral(reading) {
 function stop() {
   stopLatched = true;
   if (!link.stop()) showError('STOP not sent: not connected (a controlling console that drops off stops the rover anyway)');
+}
+
+// The driver holds a stop until the controller's input is neutral (docs/operator-protocol.md):
+// the banner says who stopped and why until the status says the rover is re-armed.
+function showStopBanner(reason) {
+  const banner = $('stop-banner');
+  banner.textContent = `STOPPED: ${reason}. The rover stays stopped until the controlling ` +
+    'console centres its sticks (no gait speed, no joint button).';
+  banner.hidden = false;
 }
 
 function showError(text) {
@@ -82,12 +91,15 @@ link.addEventListener('hello', (e) => {
     : 'calibration: none (nominal configuration)';
 });
 link.addEventListener('control', showLinkState);
+link.addEventListener('stopped', (e) => showStopBanner(e.detail.reason));
 link.addEventListener('error', (e) => showError(e.detail.text));
 link.addEventListener('pong', (e) => { $('link-state').title = `round trip ${e.detail.rtt_ms.toFixed(0)} ms`; });
 link.addEventListener('status', (e) => {
   const status = e.detail.status;
   window.marsokhod.status = status;
   statusPanel.update(status);
+  if (status.stop_latched) showStopBanner(status.stop_reason);
+  else $('stop-banner').hidden = true;
   plots.add(status);
   view.update(status);
   $('view-source').textContent = status.truth ? '(simulator ground truth)' : '(joint angles, rover placed level)';
@@ -133,7 +145,7 @@ setInterval(() => {
   if (link.inControl && document.visibilityState === 'visible') {
     const reading = currentReading();
     if (stopLatched && isNeutral(reading)) stopLatched = false;
-    link.send(gamepadMessage(stopLatched ? neutralReading() : reading));
+    link.sendInput(gamepadMessage(stopLatched ? neutralReading() : reading));
     sending = stopLatched ? 'neutral: STOPPED, let go of every stick and key to drive again'
       : 'the reading at 20 Hz';
   } else if (link.inControl) {
@@ -148,12 +160,28 @@ document.addEventListener('visibilitychange', () => {
   if (document.visibilityState === 'hidden' && link.inControl) link.stop();
 });
 
-showLinkState();
-if (token) {
+// The token goes once, for the session cookie, and leaves the address bar; without one in the
+// address a cookie from before (a reload) may still open the WebSocket.
+async function start() {
+  showLinkState();
+  if (token) {
+    history.replaceState(null, '', addressWithoutToken(location.href));
+    const refused = await exchangeToken(location, token);
+    if (refused) {
+      link.setState('disconnected');
+      showError(refused);
+      return;
+    }
+  }
+  if (!token) {
+    link.addEventListener('error', () => {
+      if (!link.everOpened) {
+        showError('no token in the page address and no session: open the address the server ' +
+          'printed, http://HOST:PORT/?token=…');
+      }
+    });
+  }
   link.connect();
-} else {
-  link.setState('disconnected');
-  showError('no token in the page address: open the address the server printed, ' +
-    'http://HOST:PORT/?token=…');
 }
+start();
 requestAnimationFrame(frame);

@@ -35,9 +35,12 @@ async function open(options) {
   return page;
 }
 
-async function takeControl(page) {
+// Takes control; the take-over's stop holds until the console's input is neutral, so with
+// `rearm` (the pad centred) it also waits until the driver is re-armed.
+async function takeControl(page, { rearm = true } = {}) {
   await page.click('#take-control');
   await waitForLinkState(page, 'in-control', 3000);
+  if (rearm) await waitForStatus(page, 'the neutral input re-armed after the take-over', (s) => s.stop_latched === false, null, 2000);
 }
 
 // Drives forward with the scripted pad until the rover has moved and every wheel has duty.
@@ -159,7 +162,7 @@ test('a second console is read-only until it takes control', async () => {
   // Its stick pushed, the read-only console sends nothing; a gamepad message sent anyway is refused.
   await setPad(second, { axes: STICK_UP });
   assert.match(await second.textContent('#send-state'), /read-only/);
-  await second.evaluate(() => window.marsokhod.link.send({
+  await second.evaluate(() => window.marsokhod.link.sendInput({
     type: 'gamepad', axes: [0, -1, 0, 0], buttons: new Array(17).fill(false),
   }));
   await second.waitForFunction(() => /read-only: take control first/.test(
@@ -167,9 +170,20 @@ test('a second console is read-only until it takes control', async () => {
   const still = await latestStatus(first);
   assert.ok(WHEELS.every((w) => Math.abs(still.motors[w].duty) < 0.05), 'a read-only console does not drive');
 
-  await takeControl(second);
+  await takeControl(second, { rearm: false });  // its stick is pushed
   await waitForLinkState(first, 'read-only', 2000);
   assert.match(await first.textContent('#link-error'), /lost control/);
+  // The take-over stopped the rover, and the stop holds while the new controller's stick is
+  // still pushed: it drives only after centring it.
+  await new Promise((resolve) => setTimeout(resolve, 500));
+  const held = await latestStatus(second);
+  assert.equal(held.stop_latched, true, 'the take-over stop holds');
+  assert.equal(held.targets.v1_radps, 0, 'no drive target with the stick pushed through a take-over');
+  assert.match(await second.textContent('#stop-banner'), /took control/);
+  await setPad(second, { axes: CENTERED });
+  await waitForStatus(second, 'centring the stick re-armed', (s) => s.stop_latched === false, null, 2000);
+  assert.equal(await second.isHidden('#stop-banner'), true);
+  await setPad(second, { axes: STICK_UP });
   const from = (await latestStatus(second)).truth.position_m;
   await waitForStatus(second, 'the second console drives after take_control', (s, a) =>
     Math.hypot(s.truth.position_m[0] - a[0], s.truth.position_m[1] - a[1]) > a[2],
@@ -178,6 +192,30 @@ test('a second console is read-only until it takes control', async () => {
   await screenshot(first, 'console-first-lost-control.png');
   await setPad(second, { axes: CENTERED });
   assert.deepEqual(second.problems, []);
+});
+
+test('a STOP from another console holds, takes control away and is shown everywhere', async () => {
+  const controller = pages[2];  // the second console holds control
+  const other = pages[1];       // read-only
+  await driveForward(controller);  // its stick stays pushed through what follows
+  await other.click('#stop');
+  await waitForStatus(other, 'the other console\'s STOP stopped every wheel', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  await waitForLinkState(controller, 'read-only', 2000);
+  for (const page of [controller, other]) {
+    await page.waitForFunction(() => /pressed STOP; client \d+ lost control/.test(
+      document.getElementById('stop-banner').textContent), null, { timeout: 2000 });
+  }
+  await screenshot(controller, 'console-stopped-by-another.png');
+  // Taking control back with the stick still pushed does not drive.
+  await takeControl(controller, { rearm: false });
+  await new Promise((resolve) => setTimeout(resolve, 500));
+  const held = await latestStatus(controller);
+  assert.equal(held.stop_latched, true);
+  assert.ok(wheelsStill(held, STILL_DUTY), 'the pushed stick does not restart the rover');
+  await setPad(controller, { axes: CENTERED });
+  await waitForStatus(controller, 're-armed once centred', (s) => s.stop_latched === false, null, 2000);
+  assert.deepEqual(controller.problems, []);
+  assert.deepEqual(other.problems, []);
 });
 
 test('closing the controlling page stops the rover within 0.5 s plus a cycle', async (t) => {
@@ -207,13 +245,40 @@ test('closing the controlling page stops the rover within 0.5 s plus a cycle', a
   t.diagnostic(`target zero after ${targetZeroMs} ms, duties zero after ${stillMs} ms`);
 });
 
+test('the token leaves the address bar, and the WebSocket needs the session', async () => {
+  const page = pages[0];
+  assert.equal(new URL(page.url()).searchParams.get('token'), null, 'the token left the address');
+  const cookies = await page.context().cookies();
+  const session = cookies.find((c) => c.name === `marsokhod_session_${server.port}`);
+  assert.ok(session, 'a session cookie');
+  assert.equal(session.httpOnly, true);
+  assert.equal(session.sameSite, 'Strict');
+  assert.equal(await page.evaluate(() => document.cookie), '', 'no script can read it');
+});
+
 test('a wrong token is refused', async () => {
+  // The server's answer itself: HTTP 401, no upgrade (before the page's try puts 127.0.0.1 into
+  // the wrong-token back-off).
+  const code = await new Promise((resolve, reject) => {
+    const request = http.get({
+      host: '127.0.0.1', port: server.port, path: '/ws', timeout: 3000,
+      headers: { Connection: 'Upgrade', Upgrade: 'websocket', 'Sec-WebSocket-Version': '13',
+        'Sec-WebSocket-Key': 'dGhlIHNhbXBsZSBub25jZQ==', Authorization: 'Bearer not-the-right-token-000' },
+    }, (response) => { response.resume(); resolve(response.statusCode); });
+    request.on('upgrade', () => resolve(101));
+    request.on('timeout', () => request.destroy(new Error('no answer within 3 s')));
+    request.on('error', reject);
+  });
+  assert.equal(code, 401);
+
   const wrong = server.url.replace(/token=[^&]+/, 'token=not-the-right-token-000');
   const page = await openConsole(browser, wrong);
   pages.push(page);
-  await waitForLinkState(page, 'disconnected', 5000);
-  await page.waitForFunction(() => /refused the connection/.test(
-    document.getElementById('link-error').textContent), null, { timeout: 3000 });
+  await page.waitForFunction(() => /refused the token/.test(
+    document.getElementById('link-error').textContent), null, { timeout: 3000 })
+    .catch(async (err) => {
+      throw new Error(`no refusal shown; #link-error: ${await page.textContent('#link-error')}`, { cause: err });
+    });
   assert.equal(await page.isDisabled('#take-control'), true);
   await screenshot(page, 'console-wrong-token.png');
 
@@ -221,19 +286,6 @@ test('a wrong token is refused', async () => {
   pages.push(none);
   await none.waitForFunction(() => /no token in the page address/.test(
     document.getElementById('link-error').textContent), null, { timeout: 3000 });
-
-  // The server's answer itself: HTTP 401, no upgrade.
-  const code = await new Promise((resolve, reject) => {
-    const request = http.get({
-      host: '127.0.0.1', port: server.port, path: '/ws?token=not-the-right-token-000', timeout: 3000,
-      headers: { Connection: 'Upgrade', Upgrade: 'websocket', 'Sec-WebSocket-Version': '13',
-        'Sec-WebSocket-Key': 'dGhlIHNhbXBsZSBub25jZQ==' },
-    }, (response) => { response.resume(); resolve(response.statusCode); });
-    request.on('upgrade', () => resolve(101));
-    request.on('timeout', () => request.destroy(new Error('no answer within 3 s')));
-    request.on('error', reject);
-  });
-  assert.equal(code, 401);
 });
 
 test('the server exits cleanly on SIGTERM', async () => {

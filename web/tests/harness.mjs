@@ -48,8 +48,11 @@ export function checkPrerequisites() {
 // Starts `marsokhod run` on a free port; resolves when it prints its console address.
 export async function startServer(token) {
   const port = await freePort();
-  const args = ['run', '--listen', `127.0.0.1:${port}`, '--token', token, '--web', DIST_DIR, '--quiet'];
-  const child = spawn(SERVER_BIN, args, { cwd: REPO_DIR, stdio: ['ignore', 'pipe', 'pipe'] });
+  // The token from the environment, as an operator should give it (argv is visible in ps).
+  const args = ['run', '--listen', `127.0.0.1:${port}`, '--web', DIST_DIR, '--quiet'];
+  const child = spawn(SERVER_BIN, args, {
+    cwd: REPO_DIR, stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, MARSOKHOD_TOKEN: token },
+  });
   const output = { text: '' };
   child.stdout.on('data', (d) => { output.text += d; });
   child.stderr.on('data', (d) => { output.text += d; });
@@ -134,24 +137,26 @@ export function latestStatus(page) {
   return page.evaluate(() => window.marsokhod.status);
 }
 
-// Waits until `predicate(status, arg)` (run in the page, on each animation frame) holds; the error
+// Waits until `predicate(status, arg)` holds for the page's newest status, polled every 20 ms
+// from here (the console's Content-Security-Policy forbids eval in the page, rightly); the error
 // names what was awaited and shows the newest status' relevant part.
 export async function waitForStatus(page, what, predicate, arg, timeoutMs) {
-  const source = `(${predicate.toString()})(window.marsokhod.status, ${JSON.stringify(arg ?? null)})`;
-  try {
-    await page.waitForFunction((code) => {
-      try { return window.marsokhod.status != null && (0, eval)(code); } catch { return false; }
-    }, source, { timeout: timeoutMs, polling: 'raf' });
-  } catch (err) {
-    const s = await latestStatus(page).catch(() => null);
-    const brief = s && {
-      mission_time_s: s.mission_time_s, mode: s.mode, targets: s.targets, commands: s.commands,
-      duty: WHEELS.map((w) => s.motors?.[w]?.duty), position_m: s.truth?.position_m,
-      operator_timeout: s.operator_timeout, operator_rejection: s.operator_rejection, faults: s.faults,
-    };
-    throw new Error(`timed out after ${timeoutMs} ms waiting until ${what}; newest status: ` +
-      `${JSON.stringify(brief)}`, { cause: err });
+  const deadline = Date.now() + timeoutMs;
+  for (;;) {
+    const status = await latestStatus(page);
+    if (status != null && predicate(status, arg ?? null)) return;
+    if (Date.now() >= deadline) break;
+    await new Promise((resolve) => setTimeout(resolve, 20));
   }
+  const s = await latestStatus(page).catch(() => null);
+  const brief = s && {
+    mission_time_s: s.mission_time_s, mode: s.mode, targets: s.targets, commands: s.commands,
+    duty: WHEELS.map((w) => s.motors?.[w]?.duty), position_m: s.truth?.position_m,
+    operator_timeout: s.operator_timeout, operator_rejection: s.operator_rejection, faults: s.faults,
+    stop_latched: s.stop_latched, stop_reason: s.stop_reason,
+  };
+  throw new Error(`timed out after ${timeoutMs} ms waiting until ${what}; newest status: ` +
+    `${JSON.stringify(brief)}`);
 }
 
 export async function waitForLinkState(page, state, timeoutMs) {

@@ -8,7 +8,7 @@ import { axleDistance, strutElevation, jointPosition, roverPose } from '../src/v
 import { keyboardReading } from '../src/keyboard.js';
 import { readPad, firstStandardPad, mergeReadings, gamepadMessage, neutralReading } from '../src/gamepad.js';
 import { configureMessage } from '../src/config.js';
-import { websocketUrl } from '../src/link.js';
+import { websocketUrl, addressWithoutToken } from '../src/link.js';
 import { missionTime } from '../src/status.js';
 
 const A = 0.145, B = 0.413;
@@ -118,12 +118,16 @@ test('configure sends only what was set, and refuses values out of range', () =>
   assert.match(configureMessage({ ...blank, speed_scale: 'fast' }).error, /out of range/);
 });
 
-test('the WebSocket address sits next to the page and carries the token', () => {
+test('the WebSocket address sits next to the page and never carries the token', () => {
   const at = (href) => ({ href, protocol: new URL(href).protocol });
-  assert.equal(websocketUrl(at('http://127.0.0.1:8080/?token=abc'), 'abc'), 'ws://127.0.0.1:8080/ws?token=abc');
-  assert.equal(websocketUrl(at('https://rover.example/?token=x#plots'), 'x'), 'wss://rover.example/ws?token=x');
-  assert.equal(websocketUrl(at('http://h/rover/index.html?token=t'), 't'), 'ws://h/rover/ws?token=t');
-  assert.equal(websocketUrl(at('http://h/'), 'a b&c'), 'ws://h/ws?token=a%20b%26c');
+  assert.equal(websocketUrl(at('http://127.0.0.1:8080/?token=abc')), 'ws://127.0.0.1:8080/ws');
+  assert.equal(websocketUrl(at('https://rover.example/?token=x#plots')), 'wss://rover.example/ws');
+  assert.equal(websocketUrl(at('http://h/rover/index.html?token=t')), 'ws://h/rover/ws');
+});
+
+test('the token leaves the address, the rest of it stays', () => {
+  assert.equal(addressWithoutToken('http://h:8080/?token=abc'), '/');
+  assert.equal(addressWithoutToken('http://h/rover/?a=1&token=abc&b=2#plots'), '/rover/?a=1&b=2#plots');
 });
 
 test('mission time reads like Figure 8.1: minutes, seconds, milliseconds', () => {
