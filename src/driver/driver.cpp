@@ -127,7 +127,8 @@ MotorVector Driver::wanted_duties(double time_s, const MotionInput& input) {
         time_s, {input.shaft_position_rad[kFrontJoint], input.shaft_position_rad[kRearJoint]},
         {input.shaft_velocity_radps[kFrontJoint], input.shaft_velocity_radps[kRearJoint]},
         {status_.motors[kFrontJoint].no_load_velocity_radps,
-         status_.motors[kRearJoint].no_load_velocity_radps});
+         status_.motors[kRearJoint].no_load_velocity_radps},
+        on_slope());
     wanted[kFrontJoint] = d[0];
     wanted[kRearJoint] = d[1];
   } else if (status_.mode == DriverMode::kCalibration) {
@@ -197,6 +198,16 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   status_.startup_phase = startup_.phase();
   encode_requests();
   return requests_;
+}
+
+bool Driver::on_slope() const {
+  if (sensors_.state().update_count == 0) return false;
+  const auto& a = status_.accel_mps2;
+  const double g = std::hypot(a[0], a[1], a[2]);
+  if (!(g > 0.1 * params_->sensors.gravity_mps2)) return false;
+  // The angle between the measured gravity and the chassis' down axis (−x3).
+  const double tilt_rad = std::acos(std::clamp(-a[2] / g, -1.0, 1.0));
+  return tilt_rad > params_->behaviours.slant_deadband_rad;
 }
 
 std::string Driver::lcd_text() const {

@@ -53,6 +53,7 @@ class Driver {
   void reset_joint_positions();
   void encode_requests();
   std::string lcd_text() const;
+  bool on_slope() const;  // the accelerometer off the vertical by more than the slant dead band
 
   const Params* params_;
   FrameIntake intake_;

@@ -43,8 +43,8 @@ class OperatorChannel {
   // The targets in force at time t: zero after the timeout, after a stop, or before any input.
   mobility::OperatorTargets targets(double time_s) const;
   bool timed_out(double time_s) const;
-  // The operator asks for a stop: a stop message, the timeout, or no input yet.
-  bool stopping(double time_s) const { return stopped_ || timed_out(time_s); }
+  // The operator asks for a stop: a stop not yet re-armed, the timeout, or no input yet.
+  bool stopping(double time_s) const { return !armed_ || timed_out(time_s); }
   bool ever_received() const { return last_valid_s_.has_value(); }
   // True from a stop until a neutral input re-arms; then targets() are zero whatever is asked.
   bool stop_latched() const { return !armed_; }

@@ -36,7 +36,8 @@ void Startup::on_dead_man_acknowledged() {
 
 std::array<double, 2> Startup::calibrate(double time_s, const std::array<double, 2>& shaft_rad,
                                          const std::array<double, 2>& shaft_speed_radps,
-                                         const std::array<double, 2>& no_load_speed_radps) {
+                                         const std::array<double, 2>& no_load_speed_radps,
+                                         bool on_slope) {
   if (phase_ != StartupPhase::kCalibrate) return {0.0, 0.0};
   if (!calibration_started_) {
     calibration_started_ = true;
@@ -49,7 +50,8 @@ std::array<double, 2> Startup::calibrate(double time_s, const std::array<double,
   bool stopped = true;
   for (std::size_t j = 0; j < 2; ++j) {
     // The shaft moves toward the negative end of the gap; once it meets the joint it rests.
-    const double widest_gap = (1.0 + params_->joints.backlash_uncertainty) * gap[j];
+    const double u = params_->joints.backlash_uncertainty;
+    const double widest_gap = (on_slope ? 1.0 - u : 1.0 + u) * gap[j];
     const bool settled = time_s - calibration_start_s_ >= kEngagementSettle_s;
     const bool slowed = std::abs(shaft_speed_radps[j]) <
                         kEngagedSpeedShare * std::abs(no_load_speed_radps[j]);

@@ -12,7 +12,13 @@
 //      configured b instead, as the thesis words it, drags the joint on by b − b_t on a unit
 //      whose true gap b_t is narrower (the rear joint out of (5.3) by up to 0.0375 rad), or stops
 //      short of the gap's end on a wider one; the measured meeting holds on every unit. If the
-//      shaft never slows, it stops after (1 + joints.backlash_uncertainty)·b, the widest gap;
+//      shaft never slows it stops after (1 + joints.backlash_uncertainty)·b, the widest gap —
+//      but on a slope (the accelerometer off the vertical by more than the slant dead band)
+//      after (1 − backlash_uncertainty)·b, the narrowest: there gravity may aid the shaft into
+//      its joint (the lock then brakes the joint at the motor's own speed, and nothing slows),
+//      and going on would drag the joint out of (5.3). Stopping short leaves the driver's p
+//      below the truth by at most 2·uncertainty·b, on the safe side of the negative bounds, and
+//      exactly uncertainty·b above it on the positive side, which joint_margin.hpp covers;
 //   4. driving.
 // Pure: the phase advances on the responses it is shown and on time given as a value.
 #pragma once
@@ -51,7 +57,8 @@ class Startup {
   // gap is closed). Starts timing on the first call.
   std::array<double, 2> calibrate(double time_s, const std::array<double, 2>& shaft_rad,
                                   const std::array<double, 2>& shaft_speed_radps,
-                                  const std::array<double, 2>& no_load_speed_radps);
+                                  const std::array<double, 2>& no_load_speed_radps,
+                                  bool on_slope = false);
 
  private:
   void advance();

@@ -66,7 +66,8 @@ struct SoakResult {
   OperatorStats operator_stats;
   std::uint64_t driver_restarts = 0;
   std::uint64_t spurious_silent_faults = 0;
-  double max_joint_excess_rad = 0.0;  // the farthest a joint went outside (5.3)  // latched by lost frames alone (no silent µN)
+  double max_joint_excess_rad = 0.0;  // the farthest a joint went outside (5.3), as judged
+  double max_unknown_joint_excess_rad = 0.0;  // the truth of joints the driver could not know
   std::array<std::uint64_t, kInvariantCount> violations{};  // per invariant
   std::vector<SoakViolation> first_violations;               // the first of each, as found
   std::optional<std::filesystem::path> recording;            // of the very first

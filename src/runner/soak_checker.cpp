@@ -75,7 +75,13 @@ const char* invariant_name(Invariant invariant) {
 InvariantChecker::InvariantChecker(const Params& params, CheckerLimits limits)
     : params_(&params),
       limits_(limits),
-      cycle_us_(std::llround(params.cycle.period_s * 1e6)) {
+      cycle_us_(std::llround(params.cycle.period_s * 1e6)),
+      stop_allowance_us_(std::llround(
+          (params.safety.operator_timeout_s +
+           std::max(std::log(2.0) / params.operator_input.drive_rate_per_s,
+                    std::log(2.0) / params.joints.control_rate_per_s) +
+           (std::ceil(1.0 / params.safety.max_duty_step) + 3.0) * params.cycle.period_s) *
+          1e6)) {
   context_.icr.fill(static_cast<std::uint16_t>(params.cycle.icr));
 }
 
@@ -129,7 +135,13 @@ std::vector<Violation> InvariantChecker::check(const CycleView& c) {
   }
   const bool restarted = !previous_running_;
   if (restarted) {
-    if (ever_ran_) check_restart(c, out);
+    if (ever_ran_) {
+      check_restart(c, out);
+      const auto& p0 = params_->motors.initial_position_rad;
+      lost_at_restart_ = {
+          std::abs(c.joint_angle_rad[0] - p0[kFrontJoint]) > limits_.joint_tolerance_rad,
+          std::abs(c.joint_angle_rad[1] - p0[kRearJoint]) > limits_.joint_tolerance_rad};
+    }
     missing_ = {};
     missed_total_ = 0;
     encoder_faulted_ = {};
@@ -204,9 +216,15 @@ void InvariantChecker::check_joints(const CycleView& c, Report& out) {
   const std::array<std::size_t, 2> motors{kFrontJoint, kRearJoint};
   for (std::size_t k = 0; k < 2; ++k) {
     encoder_faulted_[k] = encoder_faulted_[k] || c.joint_encoder_fault[k];
-    // A joint whose encoder lost pulses: only the driver's own estimate can be held to (5.3).
-    const double p = encoder_faulted_[k] ? c.status->motors[motors[k]].position_rad
-                                         : c.joint_angle_rad[k];
+    // A joint whose encoder lost pulses, or lost by a restart: only the driver's own estimate
+    // can be held to (5.3).
+    const bool unknown = encoder_faulted_[k] || lost_at_restart_[k];
+    const double truth = c.joint_angle_rad[k];
+    if (unknown) {
+      max_unknown_joint_excess_rad_ = std::max(
+          max_unknown_joint_excess_rad_, std::max(bounds[k].first - truth, truth - bounds[k].second));
+    }
+    const double p = unknown ? c.status->motors[motors[k]].position_rad : truth;
     const double excess = std::max(bounds[k].first - p, p - bounds[k].second);
     max_joint_excess_rad_ = std::max(max_joint_excess_rad_, excess);
     if (excess > limits_.joint_tolerance_rad) {
@@ -215,7 +233,9 @@ void InvariantChecker::check_joints(const CycleView& c, Report& out) {
               format(" joint %.4f rad is %.4f rad outside (5.3) [%.4f, ", p, excess,
                      bounds[k].first) +
               format("%.4f]", bounds[k].second) +
-              (encoder_faulted_[k] ? " (the driver's estimate: its encoder lost pulses)" : ""));
+              (encoder_faulted_[k]    ? " (the driver's estimate: its encoder lost pulses)"
+               : lost_at_restart_[k] ? " (the driver's estimate: the joint was lost by a restart)"
+                                     : ""));
     }
   }
 }
@@ -251,8 +271,7 @@ void InvariantChecker::check_operator_stop(const CycleView& c,
                                            Report& out) {
   if (c.status->mode == driver::DriverMode::kStartup) return;
   ++evaluations_;
-  const std::int64_t timeout_us = std::llround(params_->safety.operator_timeout_s * 1e6);
-  if (last_command_us_ && c.time_us < *last_command_us_ + timeout_us + cycle_us_) return;
+  if (last_command_us_ && c.time_us < *last_command_us_ + stop_allowance_us_) return;
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     if (duties[i].signed_pwm == 0) continue;
     const double silent_s =

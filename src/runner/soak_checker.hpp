@@ -10,15 +10,26 @@
 //   duty-step       |pwm^k − pwm^(k−1)| ≤ round(step·icr) counts (chapter 3.2), and a request that
 //                   toggles drv carries |d| ≤ direction_change_duty (+ half a count)
 //   joint-bounds    the joints themselves (truth) inside (5.3) by ≤ joint_tolerance_rad; a joint
-//                   whose encoder lost pulses since the driver started is judged by the driver's
-//                   own estimate p instead: the driver cannot know the truth then (no detection)
+//                   whose encoder lost pulses since the driver started, or that stood away from
+//                   Remark 3.1's contracted position when a driver restarted (after a brown-out
+//                   Procedure 4.3 takes it to be contracted), is judged by the driver's own
+//                   estimate p instead: the driver cannot know the truth then (no detection, no
+//                   joint state kept across a reboot — RELIABILITY.md); how far the truth went
+//                   out then is reported apart (max_unknown_joint_excess_rad)
 //   missed-counted  the status' bus.missed equals the missing responses counted here from the
 //                   frames (a controller sent a request in the previous cycle and did not answer)
 //   silent-reported "µN silent" is in the faults by the cycle µN's answer has been missing for
 //                   missed_responses_limit cycles in a row (docs: latched after 3 cycles)
 //   fault-stop      in fault mode every |d| falls by a full step each cycle until 0
-//   operator-stop   every d = 0 from the last operator command + operator_timeout_s + one cycle
-//                   on (not in start-up: Procedure 4.3 moves the joints on its own, as docs say)
+//   operator-stop   the operator silent for operator_timeout_s (Field Experiment 6.7): the driver
+//                   brings the rover to a controlled stop that ends with every d = 0 exactly,
+//                   within the stop's own time from then on: the slowest ramp of (4.14) to rest
+//                   (a joint at its full C braking with −C: ln 2/μ_joint = 1.73 s; the wheels
+//                   ln 2/μ_drive = 0.35 s), then the duties' fall by max_duty_step a cycle from
+//                   at most 1 (20 cycles), and a cycle each for the sampled landings. The duty
+//                   step rule of chapter 3.2 forbids a jump to 0, so "off at the timeout" cannot
+//                   hold; off by timeout + 2.1 s, and staying off, can. Not in start-up:
+//                   Procedure 4.3 moves the joints on its own, as docs say
 //   dead-man        the driver down (brown-out): µ0–µ7's duties are 0 from its last requests +
 //                   0.262144·dog s + one cycle on
 //   restart         a driver that comes back starts afresh: start-up mode, cycle 1, only
@@ -96,6 +107,8 @@ class InvariantChecker {
   std::uint64_t evaluations() const { return evaluations_; }
   // The largest distance of a joint outside (5.3) seen so far (0 inside), as joint-bounds judges.
   double max_joint_excess_rad() const { return max_joint_excess_rad_; }
+  // The truth's farthest excess over (5.3) of a joint the driver could not know (see above).
+  double max_unknown_joint_excess_rad() const { return max_unknown_joint_excess_rad_; }
 
  private:
   struct SentDuty {
@@ -121,8 +134,11 @@ class InvariantChecker {
   CheckerLimits limits_;
   protocol::DecodeContext context_;
   std::int64_t cycle_us_;
+  std::int64_t stop_allowance_us_;  // timeout + the controlled stop's time (operator-stop)
   std::uint64_t evaluations_ = 0;
   double max_joint_excess_rad_ = 0.0;
+  double max_unknown_joint_excess_rad_ = 0.0;
+  std::array<bool, 2> lost_at_restart_{};  // a joint away from Remark 3.1 when a driver restarted
   bool previous_running_ = false;
   bool ever_ran_ = false;
   std::array<SentDuty, kMotorCount> previous_{};
