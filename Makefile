@@ -4,9 +4,10 @@ JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 150
 SOAK_HOURS ?= 1
 SOAK_SEED ?= 1
+SWEEP_SEEDS ?= 1-20
 CMAKE_FLAGS ?= -DMARSOKHOD_WERROR=ON
 
-.PHONY: all deps configure build test bench fuzz run web soak clean
+.PHONY: all deps configure build test bench fuzz run web soak sweep clean
 
 all: build
 
@@ -34,6 +35,11 @@ fuzz: deps
 # its recording in soak-seed-SOAK_SEED/ (marsokhod replay soak-seed-SOAK_SEED).
 soak: build
 	$(BUILD_DIR)/src/app/marsokhod soak --hours $(SOAK_HOURS) --seed $(SOAK_SEED)
+
+# Every shipped scenario on every seed of SWEEP_SEEDS (each seed a different rover unit), in
+# parallel on all cores; the table of RELIABILITY.md.
+sweep: build
+	$(BUILD_DIR)/src/app/marsokhod scenario --all --seeds $(SWEEP_SEEDS)
 
 # The console: npm packages from the lock file, then the Vite build into web/dist.
 web: deps

@@ -1,0 +1,178 @@
+// The joints stay inside (5.3) on every unit: a rear joint driven at full speed into each of its
+// bounds by the driver's MotionController, against a plant that differs from the model the way
+// drawn units do — its backlash gap 15 % narrower or wider than the configured 14°, its motor
+// 10 % faster or slower than ζW(d)U/Ū, with a first-order lag, and its shaft position reaching
+// the driver one cycle late (µi samples it when the request arrives).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/adaptation/motor_curve.hpp"
+#include "core/adaptation/no_load_velocity.hpp"
+#include "driver/duty_rules.hpp"
+#include "driver/joint_margin.hpp"
+#include "driver/motion_controller.hpp"
+#include "driver/startup.hpp"
+
+namespace marsokhod::driver {
+namespace {
+
+struct Unit {
+  double gap_share = 1.0;    // b_t / b
+  double speed_share = 1.0;  // the motor's speed over the model's
+  double lag_s = 0.012;
+};
+
+// Drives the rear joint at v7 for `seconds` from p7 (the shaft on the gap's negative end, as after
+// Procedure 4.3); returns the true joint's lowest and highest positions.
+std::pair<double, double> drive_rear_joint(const Unit& unit, double start_rad, double v7_radps,
+                                           double seconds) {
+  const Params params;
+  const double h = params.cycle.period_s;
+  const double b = params.motors.backlash_rad[kRearJoint] * unit.gap_share;
+  const adaptation::MotorCurve curve(
+      adaptation::select_motor_curve(params.motor_curves, params.cycle.icr));
+  MotionController motion(params);
+  MotorVector shaft{};
+  shaft[kFrontJoint] = params.motors.initial_position_rad[kFrontJoint];
+  shaft[kRearJoint] = start_rad;
+  motion.reset_joint_positions(shaft);
+  double joint = start_rad;
+  double speed = 0.0;
+  double duty = 0.0;
+  MotorVector measured = shaft;  // one cycle late
+  MotorVector measured_speed{};
+  double lowest = joint;
+  double highest = joint;
+  RuntimeSettings settings = runtime_settings_from(params);
+  settings.switches.slant_response = false;
+  for (int k = 0; k < static_cast<int>(seconds / h); ++k) {
+    MotionInput in;
+    in.period_s = h;
+    in.shaft_position_rad = measured;
+    in.shaft_velocity_radps = measured_speed;
+    in.supply_v = params.motors.nominal_supply_v;
+    in.targets.v7_radps = v7_radps;
+    DriverStatus status;
+    const MotorVector wanted = motion.update(in, settings, status);
+    duty = next_duty(duty, wanted[kRearJoint], params.safety);
+    MotorVector sent{};
+    sent[kRearJoint] = duty;
+    motion.record_sent(sent, in.supply_v);
+    measured[kRearJoint] = shaft[kRearJoint];
+    measured_speed[kRearJoint] = speed;
+    const double target = unit.speed_share *
+                          adaptation::no_load_velocity(curve, duty, params.motors.scale[kRearJoint],
+                                                       in.supply_v, params.motors.nominal_supply_v);
+    for (int step = 0; step < 16; ++step) {
+      const double dt = h / 16.0;
+      speed += (target - speed) * dt / unit.lag_s;
+      shaft[kRearJoint] += speed * dt;
+      joint = std::clamp(joint, shaft[kRearJoint] - b, shaft[kRearJoint]);
+      lowest = std::min(lowest, joint);
+      highest = std::max(highest, joint);
+    }
+  }
+  return {lowest, highest};
+}
+
+class JointBoundsOnEveryUnit : public ::testing::TestWithParam<Unit> {};
+
+TEST_P(JointBoundsOnEveryUnit, AFullSpeedExtensionStopsInsideTheUpperBound) {
+  const Params params;
+  const auto [lowest, highest] = drive_rear_joint(GetParam(), params.joints.rear_min_rad, 1.4, 12.0);
+  EXPECT_LE(highest, params.joints.rear_max_rad + 0.01);
+  // It got there: within the full margin and the tolerance of the bound.
+  EXPECT_GE(highest, params.joints.rear_max_rad - 0.0375 - 0.05);
+  EXPECT_GE(lowest, params.joints.rear_min_rad - 0.01);
+}
+
+TEST_P(JointBoundsOnEveryUnit, AFullSpeedContractionStopsInsideTheLowerBound) {
+  const Params params;
+  const auto [lowest, highest] = drive_rear_joint(GetParam(), 2.2, -1.4, 12.0);
+  EXPECT_GE(lowest, params.joints.rear_min_rad - 0.01);
+  EXPECT_LE(lowest, params.joints.rear_min_rad + 0.05);
+  EXPECT_LE(highest, params.joints.rear_max_rad + 0.01);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    DrawnUnits, JointBoundsOnEveryUnit,
+    ::testing::Values(Unit{1.0, 1.0, 0.012}, Unit{0.85, 1.1, 0.014}, Unit{0.85, 0.9, 0.010},
+                      Unit{1.15, 1.1, 0.014}, Unit{1.15, 0.9, 0.010}));
+
+TEST(JointMargin, ThePositiveBoundsComeInByTheGapsUncertaintyAsFarAsTheShaftHasCrossed) {
+  const Params params;
+  const JointParams full = joint_bounds_with_backlash_margin(params.joints, params.motors);
+  EXPECT_NEAR(full.front_max_rad, -1.2121 - 0.15 * 0.052, 1e-12);
+  EXPECT_NEAR(full.rear_max_rad, 2.55 - 0.15 * 0.250, 1e-12);
+  EXPECT_EQ(full.front_min_rad, params.joints.front_min_rad);
+  EXPECT_EQ(full.rear_min_rad, params.joints.rear_min_rad);
+  // The shaft at the gap's negative end: no margin; halfway across: half; pushing: all of it.
+  EXPECT_EQ(positive_bound_margin_rad(0.15, 0.25, 2.0, 2.0), 0.0);
+  EXPECT_NEAR(positive_bound_margin_rad(0.15, 0.25, 2.125, 2.0), 0.01875, 1e-12);
+  EXPECT_NEAR(positive_bound_margin_rad(0.15, 0.25, 2.3, 2.0), 0.0375, 1e-12);
+  EXPECT_EQ(positive_bound_margin_rad(0.15, 0.0, 1.0, 1.0), 0.0);  // the wheels have no gap
+  JointParams narrow = params.joints;
+  narrow.backlash_uncertainty = 0.5;
+  narrow.rear_max_rad = narrow.rear_min_rad + 0.1;
+  EXPECT_THROW(joint_bounds_with_backlash_margin(narrow, params.motors), std::invalid_argument);
+}
+
+// Procedure 4.3's meeting of shaft and joint: free at ν, the gap closes when w̄ < ν/2.
+TEST(StartupProcedure43, TheGapClosesWhereTheShaftMeetsItsJointNotAfterTheConfiguredGap) {
+  const Params params;
+  Startup startup(params);
+  for (std::size_t i = 0; i < kMotorCount; ++i) startup.on_configured(i);
+  startup.on_dead_man_acknowledged();
+  const double h = params.cycle.period_s;
+  const double nu = -0.14;
+  std::array<double, 2> shaft{-1.2121, 1.2121};
+  // The rear shaft runs free for 0.20 rad (a gap 20 % narrower than 0.25), then drags its joint
+  // at a quarter of ν; the front one meets its joint after 0.05 rad.
+  std::array<double, 2> travelled{};
+  int k = 0;
+  std::array<double, 2> duty{-1.0, -1.0};
+  for (; k < 400 && startup.phase() == StartupPhase::kCalibrate; ++k) {
+    std::array<double, 2> speed{};
+    for (std::size_t j = 0; j < 2; ++j) {
+      const double free_travel = j == 0 ? 0.05 : 0.20;
+      speed[j] = duty[j] == 0.0 ? 0.0 : (travelled[j] < free_travel ? nu : nu / 4.0);
+    }
+    duty = startup.calibrate(k * h, shaft, speed, {nu, nu});
+    for (std::size_t j = 0; j < 2; ++j) {
+      const double v = duty[j] == 0.0 ? 0.0 : speed[j];
+      shaft[j] += v * h;
+      travelled[j] -= v * h;
+    }
+  }
+  EXPECT_EQ(startup.phase(), StartupPhase::kDone);
+  // Stopped within two cycles of dragging (0.035 rad/s): not the 0.05 more of b = 0.25.
+  EXPECT_GT(travelled[1], 0.20);
+  EXPECT_LT(travelled[1], 0.20 + 3 * 0.035 * h);
+  EXPECT_LT(travelled[0], 0.05 + 3 * 0.035 * h);
+}
+
+TEST(StartupProcedure43, OnASlopeAShaftThatNeverSlowsStopsAtTheNarrowestGap) {
+  const Params params;
+  for (const bool on_slope : {false, true}) {
+    Startup startup(params);
+    for (std::size_t i = 0; i < kMotorCount; ++i) startup.on_configured(i);
+    startup.on_dead_man_acknowledged();
+    const double h = params.cycle.period_s;
+    std::array<double, 2> shaft{-1.2121, 1.2121};
+    std::array<double, 2> duty{-1.0, -1.0};
+    for (int k = 0; k < 400 && startup.phase() == StartupPhase::kCalibrate; ++k) {
+      std::array<double, 2> speed{duty[0] == 0.0 ? 0.0 : -0.14, duty[1] == 0.0 ? 0.0 : -0.14};
+      duty = startup.calibrate(k * h, shaft, speed, {-0.14, -0.14}, on_slope);
+      shaft[1] += speed[1] * h;
+    }
+    const double travel = 1.2121 - shaft[1];
+    const double limit = (on_slope ? 0.85 : 1.15) * 0.25;
+    EXPECT_GE(travel, limit) << on_slope;
+    EXPECT_LT(travel, limit + 2 * 0.14 * h + 1e-9) << on_slope;  // the test moves a cycle late
+  }
+}
+
+}  // namespace
+}  // namespace marsokhod::driver
