@@ -17,6 +17,7 @@
 
 #include "bus/socketcand_server.hpp"
 #include "config/load_params.hpp"
+#include "runner/sweep.hpp"
 #include "sim/rover/simulated_rover.hpp"
 
 namespace marsokhod::app {
@@ -298,6 +299,61 @@ TEST_F(CliCalibrate, OnABusTheOperatorIsGuidedAndAPoorFitIsRefused) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("given up by the operator"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(file));
+}
+
+}  // namespace
+}  // namespace marsokhod::app
+
+namespace marsokhod::app {
+namespace {
+
+TEST(CliSweep, BadSeedRangesAndMixedOptionsAreUsageErrors) {
+  const Result reversed = cli({"--config", kConfig.c_str(), "scenario", "dead-man", "--seeds", "5-2"});
+  EXPECT_EQ(reversed.status, 2);
+  EXPECT_EQ(reversed.err, "marsokhod scenario: --seeds: '5-2': the first seed is larger than the last\n");
+  const Result both = cli({"--config", kConfig.c_str(), "scenario", "dead-man", "--seed", "3", "--seeds", "1-2"});
+  EXPECT_EQ(both.status, 2);
+  EXPECT_EQ(both.err, "marsokhod scenario: --seed names one run; a sweep takes --seeds A-B\n");
+  const Result name_and_all = cli({"--config", kConfig.c_str(), "scenario", "dead-man", "--all", "--seeds", "1"});
+  EXPECT_EQ(name_and_all.status, 2);
+  EXPECT_EQ(name_and_all.err, "marsokhod scenario: a sweep takes either a scenario NAME or --all\n");
+  const Result jobs = cli({"--config", kConfig.c_str(), "scenario", "dead-man", "--seeds", "1", "--jobs", "0"});
+  EXPECT_EQ(jobs.status, 2);
+}
+
+}  // namespace
+}  // namespace marsokhod::app
+
+
+namespace marsokhod::app {
+namespace {
+
+// The sweep end to end: the real executable as child processes, two at a time, its JSON read
+// back into the table.
+TEST(CliSweep, RunsTheExecutableOncePerSeedAndTablesTheResults) {
+  runner::SweepPlan plan;
+  plan.program = MARSOKHOD_BIN;
+  plan.common_args = {"--config", kConfig};
+  plan.scenarios.push_back(
+      {"dead-man", std::string(MARSOKHOD_SOURCE_DIR) + "/scenarios/dead-man.toml", 1});
+  plan.seeds = runner::SeedRange{2, 3};
+  plan.jobs = 2;
+  std::vector<std::size_t> progress;
+  const auto runs = runner::run_sweep(plan, [&progress](const runner::SweepProgress& p) {
+    progress.push_back(p.done);
+  });
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(progress, (std::vector<std::size_t>{1, 2}));
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(runs[k].scenario, "dead-man");
+    EXPECT_EQ(runs[k].seed, 2 + k);
+    EXPECT_TRUE(runs[k].error.empty()) << runs[k].error;
+    EXPECT_NEAR(runs[k].sim_time_s, 9.0, 0.0156);  // whole cycles of h
+    EXPECT_FALSE(runs[k].checks.empty());
+  }
+  const runner::SweepSummary summary = runner::summarize(runs);
+  EXPECT_EQ(summary.runs, 2);
+  EXPECT_EQ(summary.scenarios.size(), 1u);
 }
 
 }  // namespace
