@@ -14,8 +14,9 @@
 //                   Remark 3.1's contracted position when a driver restarted (after a brown-out
 //                   Procedure 4.3 takes it to be contracted), is judged by the driver's own
 //                   estimate p instead: the driver cannot know the truth then (no detection, no
-//                   joint state kept across a reboot — RELIABILITY.md); how far the truth went
-//                   out then is reported apart (max_unknown_joint_excess_rad)
+//                   joint state kept across a reboot — RELIABILITY.md), once its start-up has
+//                   set p⁰; how far the truth went out then is reported apart
+//                   (max_unknown_joint_excess_rad)
 //   missed-counted  the status' bus.missed equals the missing responses counted here from the
 //                   frames (a controller sent a request in the previous cycle and did not answer)
 //   silent-reported "µN silent" is in the faults by the cycle µN's answer has been missing for

@@ -237,7 +237,13 @@ TEST_F(CheckerTest, AJointLostByARestartIsJudgedByTheDriversEstimate) {
   status_.motors[kFrontJoint].position_rad = -1.2121;
   status_.motors[kRearJoint].position_rad = 1.5;
   view_.joint_angle_rad = {-2.6, 1.5};  // the truth 0.05 rad beyond p6_min
+  status_.mode = driver::DriverMode::kStartup;  // before Procedure 4.3 has set p⁰: nothing to hold
+  status_.motors[kFrontJoint].position_rad = 0.0;
   std::vector<Violation> v = cycle({});
+  EXPECT_FALSE(has(v, Invariant::kJointBounds));
+  status_.mode = driver::DriverMode::kDriving;
+  status_.motors[kFrontJoint].position_rad = -1.2121;
+  v = cycle({});
   EXPECT_FALSE(has(v, Invariant::kJointBounds));
   EXPECT_NEAR(checker_.max_unknown_joint_excess_rad(), 0.05, 1e-12);
   // The driver's own estimate is still held to (5.3).
