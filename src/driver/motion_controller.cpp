@@ -24,8 +24,8 @@ namespace marsokhod::driver {
 namespace {
 
 constexpr double kInsideBound = 0.999;  // targets strictly inside ±C keep (4.15)'s log defined
-// Commands this small are at rest: far inside every motor's dead zone (W(d) = 0 up to d ≈ 0.04,
-// about 0.1 rad/s), so cutting them to 0 moves nothing.
+// Commands this small are at rest: under one pwm count (W(1/511) ≈ 0.004 rad/s by the W₅₁₁
+// table) and inside the motors' dead zone, so cutting them to 0 moves nothing.
 constexpr double kRestRadps = 1e-3;
 
 double max_abs_wheel(const MotorVector& v) {
