@@ -98,7 +98,7 @@ std::variant<Message, ParseError> parse_send(const std::vector<std::string_view>
 }
 
 // `< frame ID SECONDS.USECONDS DATA >`: the data is one run of hex pairs in socketcand, separate
-// pairs in its protocol.md; both are accepted by joining the tokens.
+// pairs in socketcand's protocol.md; both are accepted by joining the tokens.
 std::variant<Message, ParseError> parse_frame(const std::vector<std::string_view>& tokens) {
   if (tokens.size() < 3)
     return ParseError{"frame: expected an identifier, SECONDS.USECONDS and the data"};

@@ -29,7 +29,7 @@ namespace marsokhod::bus::socketcand {
 // socketcand's own command buffer is far larger; every message of ours fits in 64 characters,
 // so anything near this bound is a peer speaking something else.
 inline constexpr std::size_t kMaxMessageLength = 256;
-// doc/protocol.md: "canbus may be at maximum 16 characters long".
+// socketcand's doc/protocol.md: "canbus may be at maximum 16 characters long".
 inline constexpr std::size_t kMaxChannelLength = 16;
 
 // 1–16 characters, none of them whitespace, '<', '>', '/' or ':'.

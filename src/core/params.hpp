@@ -158,7 +158,7 @@ struct OperatorParams {
   double drive_rate_per_s = 2.0;           // μ of (4.14) ramping v1…v4 toward their targets
 };
 
-// Chapter 5.3 wheel walking (SPEC.md's gait tables).
+// Chapter 5.3 wheel walking (docs/design.md's gait tables).
 struct GaitParams {
   double extended_rad = 2.55;              // E: |p6| = |p7| = 2.55
   double max_joint_speed_fraction = 0.5;   // C of (4.15) at full right stick, as a fraction of w

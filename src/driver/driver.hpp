@@ -1,5 +1,5 @@
 // The driver: one deterministic control cycle (the thesis' Joyride), the same on the rover, in
-// the simulator and in replay. Each call of step() is one cycle of ARCHITECTURE.md:
+// the simulator and in replay. Each call of step() is one cycle of docs/architecture.md:
 //   1.–2. the frames that arrived since the last cycle (responses to the last requests) are
 //         decoded and sorted; missing, duplicated and malformed ones are counted;
 //   3.    tracking (3.2)–(3.5), backlash, ν and load;

@@ -1,4 +1,4 @@
-// Steps 3–6 of the control cycle (ARCHITECTURE.md) while driving: from the tracked motor
+// Steps 3–6 of the control cycle (docs/architecture.md) while driving: from the tracked motor
 // positions and velocities, the supply voltage, the accelerometer and the operator's targets to
 // the duty cycles the motors should get.
 //   3. backlash (4.1)/(4.2) → p, w; no-load estimate (4.4) → ν, load l = w − ν

@@ -61,7 +61,7 @@ TEST(DecodeCommand, ConfigurationRequestChangesLaterConversions) {
 }
 
 TEST(DecodeCommand, MeasurementResponseAtTypicalReadings) {
-  // TYP readings of chapter 3.3 split into high 8 / low 2 bits (SPEC.md):
+  // TYP readings of chapter 3.3 split into high 8 / low 2 bits (docs/design.md):
   // yaw 505 → 0x7E,1; acc 279 → 0x45,3; 251 → 0x3E,3; 376 → 0x5E,0; tltᶠ 527 → 0x83,3;
   // vcc 970 → 0xF2,2; b6 = 01 11 11 00 = 0x7C; b7 = 11 10 000 0 = 0xE0 (j = 0: front tilt).
   // (3.5): a = (0, 9.81/263 = 0.04, −9.81); θf = 0.00495·527 − 2.61 = −0.001;

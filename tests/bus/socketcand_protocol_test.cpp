@@ -54,7 +54,7 @@ TEST(SocketcandProtocol, ParsesFramesAsSocketcandWritesThem) {
   EXPECT_EQ(f.frame, frame(0x188, {0x00, 0x01, 0x00, 0x02, 0x00, 0x03, 0x80, 0x05}));
   EXPECT_DOUBLE_EQ(f.time_s, 1436509052.249713);
   EXPECT_FALSE(f.extended);
-  // protocol.md writes the bytes separately; an empty frame leaves two spaces.
+  // socketcand's protocol.md writes the bytes separately; an empty frame leaves two spaces.
   EXPECT_EQ(std::get<Frame>(message_of("< frame 123 23.424242 11 22 33 44 >")).frame,
             frame(0x123, {0x11, 0x22, 0x33, 0x44}));
   EXPECT_EQ(std::get<Frame>(message_of("< frame 418 1.000000  >")).frame, frame(0x418, {}));

@@ -92,7 +92,7 @@ TEST(LoadParams, ShippedFileMatchesTheThesisDefaults) {
     EXPECT_EQ(p.sensors.accelerometer[i].minus_g_counts, d.sensors.accelerometer[i].minus_g_counts);
     EXPECT_EQ(p.sensors.accelerometer[i].plus_g_counts, d.sensors.accelerometer[i].plus_g_counts);
   }
-  EXPECT_EQ(p.sensors.tilt_rear.offset, 2.74);  // SPEC.md: the table's +2.74, not −2.74
+  EXPECT_EQ(p.sensors.tilt_rear.offset, 2.74);  // docs/design.md: the table's +2.74, not −2.74
   EXPECT_EQ(p.sensors.supply.gain, 0.06768);
   EXPECT_EQ(p.safety.operator_timeout_s, 0.5);
   EXPECT_EQ(p.safety.dead_man_dog, d.safety.dead_man_dog);

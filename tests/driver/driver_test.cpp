@@ -309,7 +309,7 @@ TEST_F(DriverTest, StatusCarriesTheSensorReadings) {
 }
 
 TEST_F(SpinDriverTest, RolkingRunsThroughItsStatesWithinTheJointBounds) {
-  // SPEC.md: rolking alternates (C,E) and (E,C); C = ∓acos(a/b), E = ∓2.55. (The slant
+  // docs/design.md: rolking alternates (C,E) and (E,C); C = ∓acos(a/b), E = ∓2.55. (The slant
   // response is off: the scripted µ8 cannot pitch with the joints, so σ would read their
   // (αr − αf)/2 as a slope.)
   start_up();

@@ -1,6 +1,6 @@
 // (4.1), (4.2) backlash: the position p and velocity w of a joint (or wheel) behind a gear with
 // play b, from the position p̄ and velocity w̄ of its motor shaft (chapter 4.1, Example 4.2, as
-// SPEC.md fixes the lost table). The shaft moves freely in [p, p + b]; pushing past either end
+// docs/design.md fixes the lost table). The shaft moves freely in [p, p + b]; pushing past either end
 // drags the joint along:
 //   P(p̄, p, b)  = p̄       if p̄ < p
 //               = p       if p ≤ p̄ ≤ p + b

@@ -17,7 +17,7 @@
 // is slow (|w| < axle_placement_speed_radps, so the jump in the sum (5.4) is small, the thesis'
 // argument), otherwise by at most axle_placement_rate_per_s · h per cycle, so ρ_out moves at
 // most that fast. Unswitched with f = 0, ρ_out is exactly the requested ρ, so a requested ρ
-// that changes every cycle (SPEC.md's ε-formula) passes through without lag. Since a release
+// that changes every cycle (docs/design.md's ε-formula) passes through without lag. Since a release
 // needs a slow joint, the return to ρ is immediate; the gradual path serves an engagement while
 // the joint moves fast.
 //

@@ -3,7 +3,7 @@
 //
 //   D(L) = (Υ − Ξ L) / (n ξ)                                                         (6.1)
 //     with n motors all at |d| = D and L = Σ_i l_i². The thesis prints n = 8; Example 6.1's
-//     numbers (D(0) = 0.417 …) come out with n = 6 and Ξ = 0.3 (SPEC.md), so n is an argument.
+//     numbers (D(0) = 0.417 …) come out with n = 6 and Ξ = 0.3 (docs/design.md), so n is an argument.
 //
 //   D^(k+1) = min( max_i |d_i^k| / Σ_i |d_i^k| · (Υ − Ξ Σ_i (l_i^k)²) / ξ , 1 )          (6.3)
 //     if d_i^k ≠ 0 for some motor i, otherwise D^(k+1) = 1. The factor max/Σ replaces 1/8 of

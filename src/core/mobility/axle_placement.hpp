@@ -1,5 +1,5 @@
 // Where the axles go while the joints bend: the driving intent ϱ and the ρ table of Remark 5.5,
-// and the exterior-axle placement for two bending joints (chapter 5.3, SPEC.md).
+// and the exterior-axle placement for two bending joints (chapter 5.3, docs/design.md).
 //
 // Remark 5.5:  ϱ^(k+1) = 0 if v1ᵈ > 0 (forward), 1 if v1ᵈ < 0 (backward), ϱ^k if v1ᵈ = 0; ϱ⁰ = 0.
 //   intention        ρf      ρr

@@ -47,7 +47,7 @@ struct GaitInput {
   control::MotionState front_joint;
   control::MotionState rear_joint;
   double period_s = 0.0;                           // h
-  // The measured w6, w7 for the ε-formula of chapter 5.3 (SPEC.md: from the measured joint
+  // The measured w6, w7 for the ε-formula of chapter 5.3 (docs/design.md: from the measured joint
   // velocities) and for "stopped"; without them the velocity states above are used.
   std::optional<double> front_measured_radps{};
   std::optional<double> rear_measured_radps{};

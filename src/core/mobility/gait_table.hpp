@@ -1,4 +1,4 @@
-// The wheel-walking gaits of chapter 5.3 as data (SPEC.md "Wheel-walking gaits"; the thesis'
+// The wheel-walking gaits of chapter 5.3 as data (docs/design.md "Wheel-walking gaits"; the thesis'
 // tables are lost). A gait is a cycle of states; each state names the stroke of the front and the
 // rear joint and the rule for ρf, ρr during the transition into it. The next state starts when
 // both joints have reached their targets and stopped (gait_sequencer.hpp).

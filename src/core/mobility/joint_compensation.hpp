@@ -24,7 +24,7 @@
 // (p6 = −γf) and −½·∂αr/∂p7 for n7. The center wheels sit on the center unit and must cancel its
 // pitch. The formula gives 0.5959 and 1.1398 for Example 5.4; the example prints 0.5331 and
 // 1.0801, whose excess over the far column (0.0389, 0.0239) is no common multiple of the
-// formula's (0.1017, 0.0836), so no placement of r explains them; SPEC.md keeps the formula.
+// formula's (0.1017, 0.0836), so no placement of r explains them; docs/design.md keeps the formula.
 //
 // ρ ∈ [0, 1] in the thesis: ρ = 0 keeps the joint's own exterior axle still, ρ = 1 the other two
 // axles. Any finite ρ is accepted (the ε-projection of chapter 5.3 may leave [0, 1]).

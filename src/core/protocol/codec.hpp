@@ -1,4 +1,4 @@
-// Byte-exact CAN codec of the controllers µ0–µ8 (chapter 3.2–3.3; bit layouts fixed in SPEC.md).
+// Byte-exact CAN codec of the controllers µ0–µ8 (chapter 3.2–3.3; bit layouts fixed in docs/design.md).
 //
 // idt = 0xiT: node i in the high nibble, type T in the low one, placed in the 8 highest bits of
 // the 11-bit identifier (chapter 3, "the lowest 3 bits are always zero"). Multi-byte fields are

@@ -1,4 +1,4 @@
-// Decoding side of the codec: validates a frame against the chapter 3.2–3.3 tables and SPEC.md's
+// Decoding side of the codec: validates a frame against the chapter 3.2–3.3 tables and docs/design.md's
 // bit layouts, and says in words what was wrong. The success path allocates nothing.
 #include <optional>
 #include <string>

@@ -1,4 +1,4 @@
-// Typed messages of the nine controllers (chapter 3.2–3.3; bit layouts fixed in SPEC.md).
+// Typed messages of the nine controllers (chapter 3.2–3.3; bit layouts fixed in docs/design.md).
 // Raw register values live here and in the emulated firmware only; physical units are made in
 // core/tracking. idt = 0xiT (i = node 0–8, T = type 0–3); CAN ID = idt << 3.
 #pragma once

@@ -1,5 +1,5 @@
 // The wire layout shared by encode and decode (internal to core/protocol): byte order, fixed data
-// lengths and bit masks of the tables in chapter 3.2–3.3 and SPEC.md's "Bit layouts".
+// lengths and bit masks of the tables in chapter 3.2–3.3 and docs/design.md's "Bit layouts".
 #pragma once
 
 #include <array>

@@ -2,7 +2,7 @@
 //
 // The controller's 16-bit enc counts encoder pulses regardless of direction, dir is the measured
 // direction (0 = counter-clockwise around x2 = positive), and stp is enc at the last measured
-// direction change (refreshed only while eim = 1). Per SPEC.md's reading of the chapter's formula,
+// direction change (refreshed only while eim = 1). Per docs/design.md's reading of the chapter's formula,
 // the signed pulse count between two readings is
 //   same direction:   Δ = (enc^k − enc^(k−1)) mod 65536
 //   direction change: Δ = ((stp^k − enc^(k−1)) mod 65536) − ((enc^k − stp^k) mod 65536)
@@ -40,7 +40,7 @@ struct PositionIncrement {
   bool reversal_point_unknown = false;  // dir changed but stp was not on the arc; counts = 0
 };
 
-// Chapter 3.2 as read in SPEC.md, including the sign (−1)^dir^(k−1).
+// Chapter 3.2 as read in docs/design.md, including the sign (−1)^dir^(k−1).
 PositionIncrement position_increment(const EncoderReading& previous, const EncoderReading& current);
 
 // 2π / encoder_pulses_per_rev [rad per pulse]. Throws std::invalid_argument unless pulses > 0.

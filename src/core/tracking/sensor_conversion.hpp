@@ -2,7 +2,7 @@
 //
 //   ω3 = 0.0170·(y − yaw)                                        [rad/s]   (3.4)
 //   a_i = g·(acc_i(g) + acc_i(−g) − 2·acc_i)/(acc_i(g) − acc_i(−g))  [m/s²]  (3.5)
-//   θf = 0.00495·tltᶠ − 2.61,  θr = −0.00526·tltʳ + 2.74           [rad]  (Procedure 3.4, SPEC.md)
+//   θf = 0.00495·tltᶠ − 2.61,  θr = −0.00526·tltʳ + 2.74           [rad]  (Procedure 3.4, docs/design.md)
 //   U = 0.06768·vcc − 41.0823                                     [V]     (Procedure 3.5)
 //
 // The accelerometer uses (3.5) with Procedure 3.3's ±g table, not the chapter 3.3 table's affine

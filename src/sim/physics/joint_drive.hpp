@@ -1,7 +1,7 @@
 // How a joint motor (6, 7) engages its joint through the backlash gap and the joint's lock.
 //
 // The motor shaft p̄ turns on the speed–torque line like a wheel motor. Between shaft and joint is
-// the gap of Procedure 4.1: the shaft moves freely in [p, p + b] (SPEC.md's reading of (4.1)).
+// the gap of Procedure 4.1: the shaft moves freely in [p, p + b] (docs/design.md's reading of (4.1)).
 // The joint is not back-drivable (chapter 5.3: "a mechanism inside the joint prevents external
 // load on the joint motor. The lock is suspended when the motor inside the joint spins and the
 // backlash is overcome"). So a joint is in one of three modes:
@@ -43,7 +43,7 @@ class JointDrive {
   JointMode mode_ = JointMode::kLocked;
 };
 
-// (4.1) with SPEC.md's reading: P(p̄, p, b) = p̄ if p̄ < p; p if p ≤ p̄ ≤ p + b; p̄ − b if p̄ > p + b.
+// (4.1) with docs/design.md's reading: P(p̄, p, b) = p̄ if p̄ < p; p if p ≤ p̄ ≤ p + b; p̄ − b if p̄ > p + b.
 double backlash_position(double shaft_rad, double joint_rad, double backlash_rad);
 
 }  // namespace marsokhod::sim

@@ -34,7 +34,7 @@ TEST(VoltageDrop, AddsTheDutyAndTheLoadTerms) {
   EXPECT_NEAR(voltage_drop_v(negated_duties, negated_loads_radps, PowerParams{}), 2.76, kTolerance);
 }
 
-// The two readings of Example 6.1 (SPEC.md): the unloaded duty D(0) that spends the whole
+// The two readings of Example 6.1 (docs/design.md): the unloaded duty D(0) that spends the whole
 // budget Υ = 1.5 V is Υ/(nξ): 1.5/(6 · 0.6) = 0.41667 on six wheels, 1.5/(8 · 0.6) = 0.3125 on
 // eight motors.
 TEST(VoltageDrop, UnloadedDutyOfExample6_1SpendsTheWholeBudget) {

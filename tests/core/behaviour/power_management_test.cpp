@@ -20,7 +20,7 @@ constexpr double kTolerance = 1e-12;
 
 // Example 6.1 as printed: Υ = 1.5, ξ = 0.6, D(0) = 0.417, D(0.2) = 0.4, D(0.5) = 0.375,
 // D(1) = 0.333, D(2) = 0.25. These are (1.5 − 0.3 L)/(6 · 0.6) = (1.5 − 0.3 L)/3.6, i.e. six
-// motors and Ξ = 0.3 (SPEC.md): 1.5/3.6 = 0.41667, 1.44/3.6 = 0.4, 1.35/3.6 = 0.375,
+// motors and Ξ = 0.3 (docs/design.md): 1.5/3.6 = 0.41667, 1.44/3.6 = 0.4, 1.35/3.6 = 0.375,
 // 1.2/3.6 = 0.33333, 0.9/3.6 = 0.25.
 TEST(PowerManagement, Example6_1WithSixMotorsAndXi0_3) {
   PowerParams power;

@@ -73,7 +73,7 @@ TEST(AxlePlacement, AxleDistanceRatesInTheMotorSign) {
   EXPECT_NEAR(rates.rear_mps, rear_clearance_rate, 1e-8);
 }
 
-// SPEC.md: af = yr − q and ar = yf − q are what the rows of n6·w6 + n7·w7 roll the exterior
+// docs/design.md: af = yr − q and ar = yf − q are what the rows of n6·w6 + n7·w7 roll the exterior
 // axles at: r·(wheel rate minus the wheel's own angle term). Random states and factors.
 TEST(AxlePlacement, ExteriorAxleVelocitiesAreWhatTheCompensationRolls) {
   const GeometryParams geometry;

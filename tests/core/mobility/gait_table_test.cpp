@@ -33,7 +33,7 @@ void expect_state(const GaitState& state, JointStroke front, JointStroke rear, A
   }
 }
 
-// SPEC.md "Wheel-walking gaits", state by state (ε-rules list ε in the first factor).
+// docs/design.md "Wheel-walking gaits", state by state (ε-rules list ε in the first factor).
 TEST(GaitTable, TablesFollowTheSpec) {
   using enum AxleRule::Kind;
   const auto rolking = gait_states(Gait::kRolking);
@@ -101,7 +101,7 @@ TEST(GaitTable, StrokePositionsLieInTheJointBounds) {
   EXPECT_EQ(rear_stroke_positions(GeometryParams{}, beyond, joints).extended_rad, 2.55);
 }
 
-// Each transition moves the axles as SPEC.md describes, and over one cycle all three axles
+// Each transition moves the axles as docs/design.md describes, and over one cycle all three axles
 // advance by the same distance: forward for ϱ = 0, backward for ϱ = 1. Transitions are driven
 // at constant rates with both joints synchronised; y = −Δcf and +Δcr (motor sign), the center
 // axle rolls at yf + yr − q (axle_placement.hpp). One stroke C ↔ E is Δc = c(2.55) − c(1.2121)

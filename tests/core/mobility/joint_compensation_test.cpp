@@ -53,7 +53,7 @@ TEST(JointCompensation, Example54RearExteriorColumns) {
   EXPECT_EQ(w[kFrontJoint], 0.0);
 }
 
-// SPEC.md "Example 5.4": the center column follows the formula, 0.5959 and 1.1398 (SPEC.md
+// docs/design.md "Example 5.4": the center column follows the formula, 0.5959 and 1.1398 (docs/design.md
 // rounds the second to 1.1400), not the example's 0.5331 and 1.0801. By hand for n6:
 // 0.494224 + ½·0.145·(0.145 + 0.413·0.504846)/0.252059 = 0.494224 + 0.101678 = 0.595902.
 TEST(JointCompensation, Example54CenterColumnFollowsTheFormula) {

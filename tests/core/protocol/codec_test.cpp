@@ -16,7 +16,7 @@ namespace {
 
 using test::make_frame;
 
-// SPEC.md: CAN ID = idt << 3, idt = 0xiT.
+// docs/design.md: CAN ID = idt << 3, idt = 0xiT.
 static_assert(can_id(3, kControlRequestType) == 0x180);  // idt 0x30
 static_assert(can_id(8, kMeasurementRequestType) == 0x400);  // idt 0x80
 static_assert(can_id(0, kControlRequestType) == 0x000);
@@ -34,7 +34,7 @@ struct Golden {
   CanFrame frame;
 };
 
-// Every byte below is worked out by hand from the tables of chapter 3.2–3.3 and SPEC.md.
+// Every byte below is worked out by hand from the tables of chapter 3.2–3.3 and docs/design.md.
 std::vector<Golden> golden_frames() {
   MeasurementRequest lcd{true, false, {'2', '4', '.', '0', 'V', ' ', 'o', 'k'}};
   return {

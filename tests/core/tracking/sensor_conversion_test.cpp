@@ -55,7 +55,7 @@ TEST(SensorConversion, YawRate) {
 }
 
 TEST(SensorConversion, TiltAndSupplyAtTypReadings) {
-  // θf = 0.00495·527 − 2.61 = −0.00135; θr = −0.00526·520 + 2.74 = +0.0048 (SPEC.md's sign);
+  // θf = 0.00495·527 − 2.61 = −0.00135; θr = −0.00526·520 + 2.74 = +0.0048 (docs/design.md's sign);
   // U = 0.06768·970 − 41.0823 = 24.5673 V, within 1 V of the nominal 24 V.
   EXPECT_NEAR(kParams.tilt_front(527), -0.00135, 1e-9);
   EXPECT_NEAR(kParams.tilt_rear(520), 0.0048, 1e-9);
