@@ -104,6 +104,29 @@ double check_excess(const SweepCheck& c) {
   return excess;
 }
 
+double check_margin(const SweepCheck& c) {
+  if (!c.value) return -std::numeric_limits<double>::infinity();
+  double margin = std::numeric_limits<double>::infinity();
+  if (c.min) margin = std::min(margin, *c.value - *c.min);
+  if (c.max) margin = std::min(margin, *c.max - *c.value);
+  return margin;
+}
+
+namespace {
+
+void add_margin(std::vector<CheckMargin>& margins, const SweepCheck& c, std::uint64_t seed) {
+  const double margin = check_margin(c);
+  auto m = std::find_if(margins.begin(), margins.end(),
+                        [&c](const CheckMargin& x) { return x.name == c.name; });
+  if (m == margins.end()) {
+    margins.push_back({c.name, c.limit, c.value, seed, margin});
+  } else if (margin < m->margin) {
+    *m = {c.name, c.limit, c.value, seed, margin};
+  }
+}
+
+}  // namespace
+
 SweepSummary summarize(const std::vector<SweepRun>& runs) {
   SweepSummary s;
   std::map<std::string, std::size_t> index;
@@ -120,6 +143,7 @@ SweepSummary summarize(const std::vector<SweepRun>& runs) {
     sc.sim_time_s += run.sim_time_s;
     sc.wall_time_s += run.wall_time_s;
     s.sim_time_s += run.sim_time_s;
+    for (const SweepCheck& c : run.checks) add_margin(sc.margins, c, run.seed);
     if (run.passed && run.error.empty()) {
       ++sc.passed;
       ++s.passed;
@@ -194,6 +218,16 @@ nlohmann::ordered_json to_json(const SweepSummary& s) {
            {"worst_seed", f.worst_seed}});
     }
     js["errors"] = sc.errors;
+    js["margins"] = nlohmann::ordered_json::array();
+    for (const CheckMargin& m : sc.margins) {
+      const bool finite = std::isfinite(m.margin);
+      js["margins"].push_back(
+          {{"name", m.name},
+           {"limit", m.limit},
+           {"value", m.value ? nlohmann::ordered_json(*m.value) : nlohmann::ordered_json()},
+           {"seed", m.seed},
+           {"margin", finite ? nlohmann::ordered_json(m.margin) : nlohmann::ordered_json()}});
+    }
     j["scenarios"].push_back(std::move(js));
   }
   return j;

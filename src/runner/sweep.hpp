@@ -65,6 +65,20 @@ struct FailingCheck {
   double worst_excess = 0.0;
 };
 
+// Every check's tightest run: the value nearest its limits (or furthest outside), over all units.
+// margin = the distance to the nearer limit, positive inside, negative outside; a unit that gave
+// no value makes it −∞. This is what tells whether a pass holds by a hair.
+struct CheckMargin {
+  std::string name;
+  std::string limit;
+  std::optional<double> value;  // none: some run gave no value
+  std::uint64_t seed = 0;
+  double margin = 0.0;
+};
+
+// Signed distance of `value` to the nearer of min, max: > 0 inside, < 0 outside, −∞ for none.
+double check_margin(const SweepCheck& check);
+
 struct ScenarioSweep {
   std::string scenario;
   int runs = 0;
@@ -72,6 +86,7 @@ struct ScenarioSweep {
   std::vector<std::uint64_t> failed_seeds;
   std::vector<FailingCheck> failing_checks;  // in the order of the scenario's checks
   std::vector<std::string> errors;           // "seed 7: …" for runs without a result
+  std::vector<CheckMargin> margins;          // every check, in the order of the scenario's checks
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;  // the runs' own wall time, added up
 };

@@ -89,6 +89,42 @@ TEST(Sweep, TableCountsPassesAndKeepsTheWorstValueWithItsSeed) {
   EXPECT_FALSE(j["all_passed"].get<bool>());
 }
 
+TEST(Sweep, MarginIsTheSignedDistanceToTheNearerLimit) {
+  EXPECT_DOUBLE_EQ(check_margin(check("a", 0.75, 0.0, 1.0)), 0.25);
+  EXPECT_DOUBLE_EQ(check_margin(check("a", 0.1, 0.0, 1.0)), 0.1);
+  EXPECT_DOUBLE_EQ(check_margin(check("a", 1.25, 0.0, 1.0)), -0.25);
+  EXPECT_DOUBLE_EQ(check_margin(check("a", 3.0, 1.0, std::nullopt)), 2.0);
+  EXPECT_TRUE(std::isinf(check_margin(check("a", std::nullopt, 0.0, 1.0))));
+  EXPECT_LT(check_margin(check("a", std::nullopt, 0.0, 1.0)), 0.0);
+}
+
+TEST(Sweep, EveryCheckKeepsItsTightestRunPassedOrNot) {
+  // A drop check (≤ 1.8) passing on every seed: 1.70, 1.78, 1.75 — the tightest is seed 2's
+  // 1.78, 0.02 inside; the speed check (≥ 0.5) is tightest on seed 3 (0.6).
+  std::vector<SweepRun> runs;
+  const double drops[] = {1.70, 1.78, 1.75};
+  const double speeds[] = {0.9, 0.7, 0.6};
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    runs.push_back(SweepRun{"pm", seed, true, "", 20.0, 1.0,
+                            {check("drop", drops[seed - 1], std::nullopt, 1.8),
+                             check("speed", speeds[seed - 1], 0.5, std::nullopt)}});
+  }
+  const SweepSummary s = summarize(runs);
+  ASSERT_EQ(s.scenarios.size(), 1u);
+  const auto& margins = s.scenarios[0].margins;
+  ASSERT_EQ(margins.size(), 2u);
+  EXPECT_EQ(margins[0].name, "drop");
+  EXPECT_EQ(margins[0].seed, 2u);
+  EXPECT_DOUBLE_EQ(*margins[0].value, 1.78);
+  EXPECT_NEAR(margins[0].margin, 0.02, 1e-12);
+  EXPECT_EQ(margins[1].name, "speed");
+  EXPECT_EQ(margins[1].seed, 3u);
+  EXPECT_NEAR(margins[1].margin, 0.1, 1e-12);
+  const auto j = to_json(s);
+  EXPECT_EQ(j["scenarios"][0]["margins"][0]["seed"], 2);
+  EXPECT_NEAR(j["scenarios"][0]["margins"][0]["margin"].get<double>(), 0.02, 1e-12);
+}
+
 TEST(Sweep, ARunComesBackFromTheScenarioCommandsJson) {
   ScenarioResult result;
   result.scenario = "dead-man";
