@@ -101,6 +101,7 @@ MotionInput Driver::motion_input(double period_s) const {
   }
   // Until µ8 has answered, the nominal voltage and a level rover stand in.
   in.supply_v = status_.supply_v > 1.0 ? status_.supply_v : params_->motors.nominal_supply_v;
+  if (status_.supply_v > 1.0) in.reference_supply_v = status_.reference_supply_v;
   if (sensors_.state().update_count > 0) in.accel_mps2 = status_.accel_mps2;
   in.targets = targets_;
   in.stopping = stopping_;

@@ -6,6 +6,7 @@
 
 #include "core/adaptation/backlash.hpp"
 #include "core/adaptation/no_load_velocity.hpp"
+#include "core/adaptation/voltage_drop.hpp"
 #include "core/behaviour/contract_on_turn.hpp"
 #include "core/behaviour/load_distribution.hpp"
 #include "core/behaviour/power_management.hpp"
@@ -109,7 +110,8 @@ MotionController::MotionController(const Params& params)
       estimator_(driver_estimator(params)),
       joints_(joint_bounds_with_backlash_margin(params.joints, params.motors)),
       joint_dead_time_s_(joint_dead_time_s(params)),
-      gait_(params.geometry, joints_, params.gaits, params.motors) {}
+      gait_(params.geometry, joints_, params.gaits, params.motors),
+      gravity_(params.sensors.gravity_mps2) {}
 
 void MotionController::reset_joint_positions(const MotorVector& shaft_position_rad) {
   backlash_.reset(shaft_position_rad);
@@ -128,6 +130,7 @@ void MotionController::track(const MotionInput& input, DriverStatus& status) {
   const MotorVector p = backlash_.joint_position_rad();
   // (4.4) one cycle late (driver_estimator): the history of the commands sent is all it needs.
   const MotorVector nu = estimator_.no_load_velocity_radps();
+  previous_load_ = load_;
   load_ = adaptation::load(w, nu);
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     MotorStatus& m = status.motors[i];
@@ -271,19 +274,25 @@ MotorVector MotionController::to_duty(const MotorVector& w_hat, const MotionInpu
 MotorVector MotionController::update(const MotionInput& input, const RuntimeSettings& settings,
                                      DriverStatus& status) {
   track(input, status);
-  // (6.3): D from the last duty cycles sent and the loads they met.
+  // (6.3): D from the last duty cycles sent and the loads they met, a growing one a cycle ahead.
   PowerParams power = params_->power;
   power.max_drop_v = settings.max_drop_v;
-  status.max_duty = behaviour::next_duty_bound(last_duty_, load_, power, settings.switches);
+  if (input.reference_supply_v > 1.0 && input.period_s > 0.0) {
+    drop_excess_.update(input.reference_supply_v - input.supply_v,
+                        adaptation::voltage_drop_v(last_duty_, load_, power), input.period_s);
+  }
+  status.max_duty = behaviour::next_duty_bound(
+      last_duty_, behaviour::anticipated_loads_radps(load_, previous_load_), power,
+      settings.switches, drop_excess_.excess_v());
   // 6.2.1: gravity, slope σ and the joint bounds (6.4).
   const auto& a = input.accel_mps2;
   if (std::hypot(a[0], a[1], a[2]) > 0.1 * params_->sensors.gravity_mps2) {
-    gravity_ = behaviour::next_gravity_direction(gravity_, a, params_->filters.gravity_lambda);
+    gravity_.update(a, params_->filters.gravity_lambda);
   }
   const double p6 = status.motors[kFrontJoint].position_rad;
   const double p7 = status.motors[kRearJoint].position_rad;
   status.slope_rad = behaviour::terrain_slope_rad(
-      gravity_, mobility::front_lever(p6, params_->geometry).inclination_rad,
+      gravity_.direction(), mobility::front_lever(p6, params_->geometry).inclination_rad,
       mobility::rear_lever(p7, params_->geometry).inclination_rad);
   // Slopes within the dead band count as flat: noise and bumps must not move the joints. Beyond
   // it γ(σ) applies unchanged; (4.16) smooths the step of the bound at the threshold.

@@ -15,6 +15,7 @@
 #include "core/adaptation/motor_curve.hpp"
 #include "core/adaptation/no_load_estimator.hpp"
 #include "core/behaviour/axle_placement.hpp"
+#include "core/behaviour/power_management.hpp"
 #include "core/behaviour/slant_response.hpp"
 #include "core/behaviour/slope_estimate.hpp"
 #include "core/behaviour/switches.hpp"
@@ -41,6 +42,7 @@ struct MotionInput {
   MotorVector shaft_position_rad{};   // p̄ (calibration offsets applied)
   MotorVector shaft_velocity_radps{}; // w̄
   double supply_v = 24.0;             // U
+  double reference_supply_v = 0.0;    // Ū (Procedure 3.5); 0 until µ8 has answered
   std::array<double, 3> accel_mps2{0.0, 0.0, -9.81};
   mobility::OperatorTargets targets;
   // A controlled stop (operator timeout or stop): every motion ramps to rest with (4.14), no
@@ -90,7 +92,7 @@ class MotionController {
   double joint_dead_time_s_;
   mobility::GaitSequencer gait_;
   mobility::DrivingIntent intent_ = mobility::DrivingIntent::kForward;
-  behaviour::Vector3 gravity_ = behaviour::kInitialGravityDirection;
+  behaviour::GravityEstimate gravity_;
   behaviour::AxlePlacementState front_placement_;
   behaviour::AxlePlacementState rear_placement_;
   std::array<double, 3> drive_velocity_{};  // v1, v2, v4 after (4.14)
@@ -100,6 +102,8 @@ class MotionController {
   std::array<double, 2> joint_velocity_{};
   MotorVector last_duty_{};
   MotorVector load_{};
+  MotorVector previous_load_{};  // l^(k−1), for the loads (6.3) anticipates
+  behaviour::MeasuredDropExcess drop_excess_;  // what (4.5) leaves out of the measured drop
 };
 
 }  // namespace marsokhod::driver

@@ -34,9 +34,11 @@ double equal_duty_bound(double load_square_sum_rad2_per_s2, std::size_t motor_co
 }
 
 double next_duty_bound(const MotorVector& duties, const MotorVector& loads_radps,
-                       const PowerParams& power, const BehaviourSwitches& switches) {
+                       const PowerParams& power, const BehaviourSwitches& switches,
+                       double unmodelled_drop_v) {
   constexpr const char* kFunction = "next_duty_bound";
   require_power_params(power, kFunction);
+  detail::require_non_negative(unmodelled_drop_v, kFunction, "unmodelled_drop_v");
   double largest_duty = 0.0;
   double duty_sum = 0.0;
   double load_square_sum_rad2_per_s2 = 0.0;
@@ -55,9 +57,32 @@ double next_duty_bound(const MotorVector& duties, const MotorVector& loads_radps
   const double load_drop_v = power.load_drop_v_s2_per_rad2 == 0.0
                                  ? 0.0
                                  : power.load_drop_v_s2_per_rad2 * load_square_sum_rad2_per_s2;
-  const double budget_v = power.max_drop_v - load_drop_v;
+  const double budget_v = power.max_drop_v - load_drop_v - unmodelled_drop_v;
   const double bound = largest_duty / duty_sum * budget_v / power.duty_drop_v;
   return std::clamp(bound, kMinimumDutyBound, 1.0);
+}
+
+double MeasuredDropExcess::update(double measured_drop_v, double modelled_drop_v,
+                                  double period_s) {
+  constexpr const char* kFunction = "MeasuredDropExcess::update";
+  detail::require_finite(measured_drop_v, kFunction, "measured_drop_v");
+  detail::require_finite(modelled_drop_v, kFunction, "modelled_drop_v");
+  detail::require_positive(period_s, kFunction, "period_s");
+  const double excess_v = std::max(0.0, measured_drop_v - modelled_drop_v);
+  const double released_v = excess_v_ * std::exp(-period_s / kDropExcessReleaseS);
+  excess_v_ = std::max(excess_v, released_v);
+  return excess_v_;
+}
+
+MotorVector anticipated_loads_radps(const MotorVector& loads_radps,
+                                    const MotorVector& previous_loads_radps) {
+  MotorVector anticipated = loads_radps;
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    if (std::abs(loads_radps[i]) > std::abs(previous_loads_radps[i])) {
+      anticipated[i] = 2.0 * loads_radps[i] - previous_loads_radps[i];
+    }
+  }
+  return anticipated;
 }
 
 }  // namespace marsokhod::behaviour

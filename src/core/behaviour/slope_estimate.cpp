@@ -21,42 +21,35 @@ void require_finite_vector(const Vector3& vector, const char* function, const ch
 
 }  // namespace
 
-Vector3 next_gravity_direction(const Vector3& previous_direction, const Vector3& acceleration_mps2,
-                               double lambda) {
-  constexpr const char* kFunction = "next_gravity_direction";
-  require_finite_vector(previous_direction, kFunction, "previous_direction");
+GravityEstimate::GravityEstimate(double gravity_mps2) {
+  detail::require_positive(gravity_mps2, "GravityEstimate", "gravity_mps2");
+  mean_mps2_ = {0.0, 0.0, -gravity_mps2};
+}
+
+void GravityEstimate::update(const Vector3& acceleration_mps2, double lambda) {
+  constexpr const char* kFunction = "GravityEstimate::update";
   require_finite_vector(acceleration_mps2, kFunction, "acceleration_mps2");
   detail::require_within(lambda, 0.0, 1.0, kFunction, "lambda");
   if (lambda == 1.0) {
     throw std::invalid_argument(
-        "next_gravity_direction: lambda = 1 never learns from the accelerometer; use a value "
+        "GravityEstimate::update: lambda = 1 never learns from the accelerometer; use a value "
         "in [0, 1), close to 1 (FilterParams::gravity_lambda)");
   }
-  const double reading_norm_mps2 = norm(acceleration_mps2);
-  if (reading_norm_mps2 == 0.0) {
+  if (norm(acceleration_mps2) == 0.0) {
     throw std::invalid_argument(
-        "next_gravity_direction: acceleration_mps2 = (0, 0, 0) has no direction; check the "
+        "GravityEstimate::update: acceleration_mps2 = (0, 0, 0) has no direction; check the "
         "accelerometer (at rest it reads about 9.81 m/s²) and skip the update until it does");
   }
-  if (norm(previous_direction) == 0.0) {
-    throw std::invalid_argument(
-        "next_gravity_direction: previous_direction = (0, 0, 0); start from "
-        "kInitialGravityDirection and pass the last returned direction");
-  }
-  Vector3 reading_direction{};
   Vector3 blended{};
   for (std::size_t i = 0; i < blended.size(); ++i) {
-    reading_direction[i] = acceleration_mps2[i] / reading_norm_mps2;
-    blended[i] = lambda * previous_direction[i] + (1.0 - lambda) * reading_direction[i];
+    blended[i] = lambda * mean_mps2_[i] + (1.0 - lambda) * acceleration_mps2[i];
   }
-  const double blended_norm = norm(blended);
-  if (blended_norm == 0.0) {
-    return reading_direction;
-  }
-  for (double& component : blended) {
-    component /= blended_norm;
-  }
-  return blended;
+  mean_mps2_ = norm(blended) == 0.0 ? acceleration_mps2 : blended;
+}
+
+Vector3 GravityEstimate::direction() const {
+  const double length = norm(mean_mps2_);
+  return {mean_mps2_[0] / length, mean_mps2_[1] / length, mean_mps2_[2] / length};
 }
 
 double terrain_slope_rad(const Vector3& gravity_direction, double front_lever_inclination_rad,

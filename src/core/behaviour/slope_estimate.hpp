@@ -1,14 +1,24 @@
 // Chapter 6.2.1: the slope of the terrain along the rover's x1 axis from the accelerometer.
 //
-//   ḡ^k = λ g^(k−1) + (1 − λ) a^k / ‖a^k‖,   g^k = ḡ^k / ‖ḡ^k‖,   g⁰ = (0, 0, −1)
+//   ā^k = λ ā^(k−1) + (1 − λ) a^k,   g^k = ā^k / ‖ā^k‖,   ā⁰ = (0, 0, −9.81 m/s²)
 //   σ = acos(g1) − π/2 + (αr − αf)/2
 //
 // a^k [m/s²] is the accelerometer reading converted by (3.5) in the sensor frame (x1 forward,
 // x2 left, x3 up); at rest it points along gravity, so on flat ground a = (0, 0, −9.81) and
-// g = g⁰. λ = FilterParams::gravity_lambda per cycle, close to 1. αf, αr are the lever
+// g = (0, 0, −1). λ = FilterParams::gravity_lambda per cycle, close to 1. αf, αr are the lever
 // inclinations of the table in chapter 5 (from the mobility geometry, passed in here): their
 // half difference corrects for the center unit, which carries the sensor, pitching against the
 // line of the exterior axles.
+//
+// Averaged, then normalised — not as the thesis prints it, ḡ^k = λ g^(k−1) + (1 − λ) a^k/‖a^k‖,
+// each reading normalised before the average. While driving the accelerometer reads gravity
+// plus the chassis' accelerations, whose mean is zero; the mean of the readings is gravity, but
+// the mean of their directions is not: the direction is a convex function of a vertical bump, so
+// bumps tilt the averaged direction away from the vertical. On loose sand (the vertical reading
+// varies by 3 m/s², σ) this made σ read 2.3° steep on a 20° slope, beyond the chassis' true
+// 21° pitch, and moved the slant bound γ(σ) of (6.4) by 0.045 rad. A bump of ±3 m/s² on a 20°
+// reading, half the time each way: the thesis' average gives 21.86°, the mean of the readings
+// 20° exactly (tested).
 //
 // Sign convention: nose up by θ on a slope tilts x1 upward, so gravity gains a component
 // against x1: a = 9.81 (−sin θ, 0, −cos θ), g1 = −sin θ < 0, acos(g1) = π/2 + θ and σ = θ > 0
@@ -22,16 +32,29 @@ namespace marsokhod::behaviour {
 
 using Vector3 = std::array<double, 3>;
 
-// g⁰: the rover starts assuming flat ground.
-inline constexpr Vector3 kInitialGravityDirection{0.0, 0.0, -1.0};
+// The gravity filter: the mean ā of the accelerometer's readings, and its direction g.
+class GravityEstimate {
+ public:
+  // ā⁰ = (0, 0, −gravity_mps2): the rover starts assuming flat ground. Throws
+  // std::invalid_argument unless gravity_mps2 > 0 and finite.
+  explicit GravityEstimate(double gravity_mps2);
 
-// One step of the gravity filter: g^k from g^(k−1) and a^k. λ in [0, 1) (0: no filtering).
-// If ḡ^k vanishes (only possible for λ ≤ 1/2 and a^k exactly against g^(k−1)) the new reading's
-// direction a^k/‖a^k‖ is taken. Throws std::invalid_argument if an input is not finite, a^k is
-// the zero vector (no direction to learn from: a sensor fault, or free fall), g^(k−1) is the
-// zero vector, or λ is outside [0, 1).
-Vector3 next_gravity_direction(const Vector3& previous_direction, const Vector3& acceleration_mps2,
-                               double lambda);
+  // One step: ā^k = λ ā^(k−1) + (1 − λ) a^k, λ in [0, 1) (0: no filtering). If ā^k vanishes
+  // (only possible for λ ≤ 1/2 and a^k exactly against ā^(k−1)) the reading is taken. Throws
+  // std::invalid_argument if a^k is not finite or the zero vector (no direction to learn from: a
+  // sensor fault, or free fall), or λ is outside [0, 1); the estimate is unchanged then.
+  void update(const Vector3& acceleration_mps2, double lambda);
+
+  // g = ā/‖ā‖, a unit vector.
+  Vector3 direction() const;
+  const Vector3& mean_acceleration_mps2() const { return mean_mps2_; }
+
+ private:
+  Vector3 mean_mps2_;
+};
+
+// The unit vector g that GravityEstimate starts from: flat ground.
+inline constexpr Vector3 kInitialGravityDirection{0.0, 0.0, -1.0};
 
 // σ [rad] from a unit gravity direction g and the lever inclinations αf, αr [rad]. g1 is
 // clamped into [−1, 1] against rounding. Throws std::invalid_argument if an input is not

@@ -133,6 +133,49 @@ TEST(PowerManagement, SwitchedOffGivesOne) {
   EXPECT_EQ(next_duty_bound(duties, MotorVector{}, PowerParams{}, all_switched_off()), 1.0);
 }
 
+// Six wheels at d = 0.3 (max/Σ = 1/6) with 0.3 V of drop the model does not explain: the budget
+// is 1.5 − 0.3 = 1.2 V, D = (1/6) · 1.2/0.6 = 1/3 instead of 0.41667.
+TEST(PowerManagement, AnUnmodelledDropShrinksTheBudget) {
+  const MotorVector duties{0.3, 0.3, 0.3, 0.3, 0.3, 0.3, 0.0, 0.0};
+  EXPECT_NEAR(next_duty_bound(duties, MotorVector{}, PowerParams{}, BehaviourSwitches{}, 0.3),
+              1.0 / 3.0, kTolerance);
+  EXPECT_THAT(invalid_argument_message([&] {
+                next_duty_bound(duties, MotorVector{}, PowerParams{}, BehaviourSwitches{}, -0.1);
+              }),
+              HasSubstr("unmodelled_drop_v = -0.1"));
+}
+
+// The excess of the measured over the modelled drop is taken at once and released with
+// τ = 0.5 s: 0.4 V measured over 1.5 V modelled, then none: after 0.25 s (16 cycles of
+// 15.625 ms) 0.4·e^(−0.5) = 0.24261 V. A model above the measurement gives no excess.
+TEST(PowerManagement, MeasuredDropExcessAttacksAtOnceAndReleasesSlowly) {
+  MeasuredDropExcess excess;
+  EXPECT_DOUBLE_EQ(excess.update(1.2, 1.5, 0.015625), 0.0);
+  EXPECT_NEAR(excess.update(1.9, 1.5, 0.015625), 0.4, kTolerance);
+  for (int k = 0; k < 16; ++k) excess.update(1.0, 1.5, 0.015625);
+  EXPECT_NEAR(excess.excess_v(), 0.4 * std::exp(-0.5), 1e-12);
+  // A larger excess replaces the released one at once.
+  EXPECT_NEAR(excess.update(2.0, 1.5, 0.015625), 0.5, kTolerance);
+  EXPECT_THAT(invalid_argument_message([&] { excess.update(kNaN, 1.5, 0.015625); }),
+              HasSubstr("measured_drop_v = nan"));
+  EXPECT_THAT(invalid_argument_message([&] { excess.update(1.0, 1.5, 0.0); }),
+              HasSubstr("period_s = 0"));
+  EXPECT_NEAR(excess.excess_v(), 0.5, kTolerance);
+}
+
+// A growing load is taken a cycle ahead, a steady or shrinking one as it is:
+// l^(k−1) = (0.1, −0.2, 0.3, 0.3, …), l^k = (0.2, −0.3, 0.1, 0.3, …) → (0.3, −0.4, 0.1, 0.3, …).
+TEST(PowerManagement, AnticipatesOnlyGrowingLoads) {
+  const MotorVector previous{0.1, -0.2, 0.3, 0.3, 0.0, 0.0, 0.0, 0.0};
+  const MotorVector now{0.2, -0.3, 0.1, 0.3, 0.0, 0.0, 0.0, 0.0};
+  const MotorVector ahead = anticipated_loads_radps(now, previous);
+  EXPECT_NEAR(ahead[0], 0.3, kTolerance);
+  EXPECT_NEAR(ahead[1], -0.4, kTolerance);
+  EXPECT_DOUBLE_EQ(ahead[2], 0.1);
+  EXPECT_DOUBLE_EQ(ahead[3], 0.3);
+  EXPECT_DOUBLE_EQ(ahead[4], 0.0);
+}
+
 TEST(PowerManagement, RejectsInvalidInputsByName) {
   const BehaviourSwitches on;
   MotorVector duties{};

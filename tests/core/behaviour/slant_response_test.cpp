@@ -90,11 +90,11 @@ TEST(SlantResponse, JointAngleGrowsWithTheSlope) {
 // 0.358735), which cancel: σ = ±15° = ±0.261799 rad.
 double settled_slope_rad(double pitch_rad) {
   const Vector3 reading_mps2{-9.81 * std::sin(pitch_rad), 0.0, -9.81 * std::cos(pitch_rad)};
-  Vector3 direction = kInitialGravityDirection;
+  GravityEstimate estimate(9.81);
   for (int k = 0; k < 4000; ++k) {
-    direction = next_gravity_direction(direction, reading_mps2, FilterParams{}.gravity_lambda);
+    estimate.update(reading_mps2, FilterParams{}.gravity_lambda);
   }
-  return terrain_slope_rad(direction, 0.358735, 0.358735);
+  return terrain_slope_rad(estimate.direction(), 0.358735, 0.358735);
 }
 
 // Nose up 15°: the rear joint faces downhill; p7_min rises from 1.2121 to γ(15°) = 1.486607
