@@ -63,9 +63,8 @@ TEST(ReferenceVoltage, RejectsInvalidInput) {
               ::testing::HasSubstr("filters.reference_voltage_lambda"));
   ReferenceVoltage reference(0.99);
   reference.update(24.0, true);
-  EXPECT_FALSE(invalid_argument_message([&] {
-                 reference.update(std::numeric_limits<double>::quiet_NaN(), true);
-               }).empty());
+  EXPECT_THROW(reference.update(std::numeric_limits<double>::quiet_NaN(), true),
+               std::invalid_argument);
   EXPECT_DOUBLE_EQ(reference.reference_v(), 24.0);
 }
 
