@@ -17,7 +17,8 @@ constexpr int kUsageError = 2;
 
 void list_procedures(std::ostream& out) {
   for (const calibration::ProcedureInfo& p : calibration::procedures()) {
-    out << std::left << std::setw(15) << p.name << std::setw(16) << p.reference << p.summary
+    out << std::left << std::setw(15) << p.name << std::setw(16) << (p.reference + " ")
+        << p.summary
         << (p.needs_bench ? "" : " (no rover needed)") << "\n";
   }
 }
@@ -90,7 +91,7 @@ int run_calibrate_command(const CalibrateArgs& args, const LoadedConfig& config,
       out << "marsokhod calibrate " << info->name << ": " << info->reference << " on " << source
           << "; " << describe_calibration(config.params) << "\n";
     }
-    result = info->run(bench.get(), config.params, options);
+    result = calibration::run_procedure(bench.get(), *info, config.params, options);
     if (bench) bench->stop();
   } catch (const std::invalid_argument& e) {
     err << "marsokhod calibrate " << info->name << ": " << e.what() << "\n";

@@ -61,14 +61,16 @@ const std::array<StandPose, 6>& accelerometer_poses() {
   return poses;
 }
 
-ProcedureResult fit_accelerometer(const std::vector<AccelerometerPlacement>& placements,
-                                  const SensorParams& configured,
-                                  const AccelerometerLimits& limits) {
-  ProcedureResult result;
-  result.procedure = "accelerometer";
-  result.reference = "Procedure 3.3";
-  // table[axis][up ? 1 : 0]
-  std::array<std::array<std::optional<AxisReading>, 2>, 3> table{};
+namespace {
+
+// table[axis][up ? 1 : 0]: each placement's reading of the axis along gravity.
+using GravityTable = std::array<std::array<std::optional<AxisReading>, 2>, 3>;
+
+// The table from the placements, with the problems of placements that are short, not at rest,
+// twice or missing.
+GravityTable gravity_table(const std::vector<AccelerometerPlacement>& placements,
+                           const AccelerometerLimits& limits, ProcedureResult& result) {
+  GravityTable table{};
   for (const AccelerometerPlacement& p : placements) {
     const std::string name = placement_name(p.axis, p.axis_up);
     if (p.axis >= 3) {
@@ -105,12 +107,14 @@ ProcedureResult fit_accelerometer(const std::vector<AccelerometerPlacement>& pla
       }
     }
   }
-  if (!result.problems.empty()) return result;
+  return table;
+}
 
-  std::array<double, 3> minus{}, plus{};
+// Each axis' span acc(+g) − acc(−g) against the configured one.
+void judge_spans(const std::array<double, 3>& minus, const std::array<double, 3>& plus,
+                 const SensorParams& configured, const AccelerometerLimits& limits,
+                 ProcedureResult& result) {
   for (std::size_t axis = 0; axis < 3; ++axis) {
-    plus[axis] = table[axis][1]->mean_counts;
-    minus[axis] = table[axis][0]->mean_counts;
     const double span = plus[axis] - minus[axis];
     const AccelerometerAxisParams& nominal = configured.accelerometer[axis];
     const double nominal_span = nominal.plus_g_counts - nominal.minus_g_counts;
@@ -125,7 +129,12 @@ ProcedureResult fit_accelerometer(const std::vector<AccelerometerPlacement>& pla
           " times that, same sign): a placement was wrong or the axis does not respond");
     }
   }
-  // Across gravity an axis reads its mid value: checks that each placement was the one asked for.
+}
+
+// Across gravity an axis reads its mid value: checks that each placement was the one asked for.
+void judge_cross_axes(const std::vector<AccelerometerPlacement>& placements,
+                      const std::array<double, 3>& minus, const std::array<double, 3>& plus,
+                      const AccelerometerLimits& limits, ProcedureResult& result) {
   double worst_cross = 0.0;
   for (const AccelerometerPlacement& p : placements) {
     for (std::size_t axis = 0; axis < 3; ++axis) {
@@ -146,6 +155,41 @@ ProcedureResult fit_accelerometer(const std::vector<AccelerometerPlacement>& pla
     }
   }
   result.quality["max_cross_axis_fraction"] = worst_cross;
+}
+
+// Every reading of every placement, for the plot.
+Recording readings_recording(const std::vector<AccelerometerPlacement>& placements) {
+  Recording r;
+  r.name = "accelerometer";
+  r.title = "Procedure 3.3: acc at rest in the six placements";
+  r.columns = {"placement", "axis", "axis_up", "acc1_counts", "acc2_counts", "acc3_counts"};
+  for (std::size_t k = 0; k < placements.size(); ++k) {
+    const AccelerometerPlacement& p = placements[k];
+    for (const auto& reading : p.readings_counts) {
+      r.rows.push_back({static_cast<double>(k), static_cast<double>(p.axis + 1),
+                        p.axis_up ? 1.0 : 0.0, reading[0], reading[1], reading[2]});
+    }
+  }
+  r.gnuplot = kGnuplot;
+  return r;
+}
+
+}  // namespace
+
+ProcedureResult fit_accelerometer(const std::vector<AccelerometerPlacement>& placements,
+                                  const SensorParams& configured,
+                                  const AccelerometerLimits& limits) {
+  ProcedureResult result;
+  const GravityTable table = gravity_table(placements, limits, result);
+  if (!result.problems.empty()) return result;
+
+  std::array<double, 3> minus{}, plus{};
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    plus[axis] = table[axis][1]->mean_counts;
+    minus[axis] = table[axis][0]->mean_counts;
+  }
+  judge_spans(minus, plus, configured, limits, result);
+  judge_cross_axes(placements, minus, plus, limits, result);
   double worst_sd = 0.0;
   for (const auto& axis : table) {
     for (const auto& entry : axis) worst_sd = std::max(worst_sd, entry->sd_counts);
@@ -161,49 +205,57 @@ ProcedureResult fit_accelerometer(const std::vector<AccelerometerPlacement>& pla
   sensors.insert_or_assign("accelerometer_minus_g_counts", std::move(minus_array));
   sensors.insert_or_assign("accelerometer_plus_g_counts", std::move(plus_array));
   result.values.insert_or_assign("sensors", std::move(sensors));
-
-  Recording r;
-  r.name = "accelerometer";
-  r.title = "Procedure 3.3: acc at rest in the six placements";
-  r.columns = {"placement", "axis", "axis_up", "acc1_counts", "acc2_counts", "acc3_counts"};
-  for (std::size_t k = 0; k < placements.size(); ++k) {
-    const AccelerometerPlacement& p = placements[k];
-    for (const auto& reading : p.readings_counts) {
-      r.rows.push_back({static_cast<double>(k), static_cast<double>(p.axis + 1),
-                        p.axis_up ? 1.0 : 0.0, reading[0], reading[1], reading[2]});
-    }
-  }
-  r.gnuplot = kGnuplot;
-  result.recordings.push_back(std::move(r));
+  result.recordings.push_back(readings_recording(placements));
   return result;
 }
 
-ProcedureResult calibrate_accelerometer(Bench& bench, const ProcedureOptions& options) {
-  if (!bench.started()) bench.start(bench.params().cycle.icr, bench.params().cycle.con);
-  const double rest_s = options.duration_s.value_or(kDefaultRestS * 6.0) / 6.0;
-  std::vector<AccelerometerPlacement> placements;
-  for (const StandPose& pose : accelerometer_poses()) {
-    BenchSetup setup;
-    setup.placement = BenchSetup::Placement::kStand;
-    setup.stand_roll_rad = pose.roll_rad;
-    setup.stand_pitch_rad = pose.pitch_rad;
-    setup.instruction = pose.instruction;
-    bench.arrange(setup);
-    AccelerometerPlacement p;
-    p.axis = pose.axis;
-    p.axis_up = pose.axis_up;
-    for (const BenchSample& s : bench.hold(MotorVector{}, rest_s)) {
-      if (!s.raw) continue;
-      p.readings_counts.push_back({static_cast<double>(s.raw->acc[0]),
-                                   static_cast<double>(s.raw->acc[1]),
-                                   static_cast<double>(s.raw->acc[2])});
+namespace {
+
+// Procedure 3.3 on the stand: the rover turned into each of the six poses in turn, at rest.
+class AccelerometerProcedure final : public Procedure {
+ public:
+  double default_duration_s() const override { return kDefaultRestS * 6.0; }
+
+  void command(Bench& bench, const Run& run) override {
+    const double rest_s = run.duration_s / 6.0;
+    for (const StandPose& pose : accelerometer_poses()) {
+      BenchSetup setup;
+      setup.placement = BenchSetup::Placement::kStand;
+      setup.stand_roll_rad = pose.roll_rad;
+      setup.stand_pitch_rad = pose.pitch_rad;
+      setup.instruction = pose.instruction;
+      bench.arrange(setup);
+      AccelerometerPlacement p;
+      p.axis = pose.axis;
+      p.axis_up = pose.axis_up;
+      for (const BenchSample& s : bench.hold(MotorVector{}, rest_s)) {
+        if (!s.raw) continue;
+        p.readings_counts.push_back({static_cast<double>(s.raw->acc[0]),
+                                     static_cast<double>(s.raw->acc[1]),
+                                     static_cast<double>(s.raw->acc[2])});
+      }
+      placements_.push_back(std::move(p));
     }
-    placements.push_back(std::move(p));
   }
-  BenchSetup ground;
-  ground.instruction = "Procedure 3.3 done: set the rover back on its wheels";
-  bench.arrange(ground);
-  return fit_accelerometer(placements, bench.params().sensors);
+
+  std::optional<BenchSetup> teardown(const Run&) const override {
+    BenchSetup ground;
+    ground.instruction = "Procedure 3.3 done: set the rover back on its wheels";
+    return ground;
+  }
+
+  ProcedureResult fit(const Run& run) const override {
+    return fit_accelerometer(placements_, run.params.sensors);
+  }
+
+ private:
+  std::vector<AccelerometerPlacement> placements_;
+};
+
+}  // namespace
+
+std::unique_ptr<Procedure> accelerometer_procedure() {
+  return std::make_unique<AccelerometerProcedure>();
 }
 
 }  // namespace marsokhod::calibration

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -153,6 +154,80 @@ LeastSquaresFit fit_least_squares(const std::vector<std::vector<double>>& rows,
   }
   fit.residuals = residuals_of(predicted, y);
   return fit;
+}
+
+std::vector<double> inverse_diagonal(std::vector<std::vector<double>> m) {
+  const std::size_t n = m.size();
+  std::vector<std::vector<double>> inv(n, std::vector<double>(n, 0.0));
+  for (std::size_t i = 0; i < n; ++i) inv[i][i] = 1.0;
+  for (std::size_t c = 0; c < n; ++c) {
+    std::size_t pivot = c;
+    for (std::size_t r = c + 1; r < n; ++r) {
+      if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
+    }
+    if (!(std::abs(m[pivot][c]) > 0.0)) return {};
+    std::swap(m[c], m[pivot]);
+    std::swap(inv[c], inv[pivot]);
+    const double p = m[c][c];
+    for (std::size_t k = 0; k < n; ++k) {
+      m[c][k] /= p;
+      inv[c][k] /= p;
+    }
+    for (std::size_t r = 0; r < n; ++r) {
+      if (r == c) continue;
+      const double f = m[r][c];
+      for (std::size_t k = 0; k < n; ++k) {
+        m[r][k] -= f * m[c][k];
+        inv[r][k] -= f * inv[c][k];
+      }
+    }
+  }
+  std::vector<double> diagonal(n);
+  for (std::size_t i = 0; i < n; ++i) diagonal[i] = inv[i][i];
+  return diagonal;
+}
+
+double eigenvalue_ratio(std::vector<std::vector<double>> a) {
+  const std::size_t n = a.size();
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    double off = 0.0;
+    double total = 0.0;
+    for (std::size_t p = 0; p < n; ++p) {
+      for (std::size_t q = 0; q < n; ++q) {
+        total += a[p][q] * a[p][q];
+        if (p != q) off += a[p][q] * a[p][q];
+      }
+    }
+    if (off <= 1e-30 * total) break;
+    for (std::size_t p = 0; p < n; ++p) {
+      for (std::size_t q = p + 1; q < n; ++q) {
+        if (a[p][q] == 0.0) continue;
+        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+        const double t = (theta >= 0.0 ? 1.0 : -1.0) / (std::abs(theta) + std::hypot(theta, 1.0));
+        const double c = 1.0 / std::hypot(t, 1.0);
+        const double s = t * c;
+        for (std::size_t k = 0; k < n; ++k) {
+          const double kp = a[k][p];
+          const double kq = a[k][q];
+          a[k][p] = c * kp - s * kq;
+          a[k][q] = s * kp + c * kq;
+        }
+        for (std::size_t k = 0; k < n; ++k) {
+          const double pk = a[p][k];
+          const double qk = a[q][k];
+          a[p][k] = c * pk - s * qk;
+          a[q][k] = s * pk + c * qk;
+        }
+      }
+    }
+  }
+  double smallest = std::numeric_limits<double>::infinity();
+  double largest = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    smallest = std::min(smallest, a[i][i]);
+    largest = std::max(largest, a[i][i]);
+  }
+  return largest > 0.0 ? std::max(0.0, smallest) / largest : 0.0;
 }
 
 }  // namespace marsokhod::calibration

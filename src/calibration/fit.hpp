@@ -34,6 +34,13 @@ struct LeastSquaresFit {
 LeastSquaresFit fit_least_squares(const std::vector<std::vector<double>>& rows,
                                   std::span<const double> y);
 
+// The diagonal of m⁻¹ by Gauss–Jordan, for a small (normal) matrix; empty when m is singular.
+std::vector<double> inverse_diagonal(std::vector<std::vector<double>> m);
+
+// The smallest over the largest eigenvalue of a symmetric matrix (cyclic Jacobi); 0 when the
+// largest is not positive.
+double eigenvalue_ratio(std::vector<std::vector<double>> a);
+
 Residuals residuals_of(std::span<const double> predicted, std::span<const double> measured);
 
 double mean(std::span<const double> values);          // throws on empty input

@@ -48,8 +48,6 @@ ProcedureResult fit_joints(const std::array<std::vector<JointHold>, 2>& holds,
                            const JointInitialisation& initialisation,
                            const MotorParams& configured, const JointLimits& limits) {
   ProcedureResult result;
-  result.procedure = "joints";
-  result.reference = "Procedure 4.3, Procedure 4.1";
   result.quality["initialisation_s"] = initialisation.duration_s;
   result.quality["initialisation_front_travel_rad"] = initialisation.travel_rad[0];
   result.quality["initialisation_rear_travel_rad"] = initialisation.travel_rad[1];
@@ -196,51 +194,73 @@ bool JointMover::move_to(Bench& bench, double front_rad, double rear_rad, double
   return false;
 }
 
-ProcedureResult calibrate_joints(Bench& bench, const ProcedureOptions& options) {
-  if (!bench.started()) bench.start(bench.params().cycle.icr, bench.params().cycle.con);
-  BenchSetup setup;
-  setup.placement = BenchSetup::Placement::kGround;
-  setup.strapped_down = true;
-  setup.instruction =
-      "Procedures 4.1/4.3: joints in vertical configuration (as after start-up); strap the rover "
-      "to the ground so that neither the wheels rotate nor the joints incline";
-  bench.arrange(setup);
-  const JointInitialisation init = initialise_joints(bench);
+namespace {
 
-  const std::size_t reversals =
-      options.duration_s ? std::max<std::size_t>(2, static_cast<std::size_t>(*options.duration_s /
-                                                                              kHoldS))
-                         : kDefaultReversals;
-  std::array<std::vector<JointHold>, 2> holds;
-  Recording r;
-  r.name = "joints";
-  r.title = "Procedure 4.1: joint shafts reversed at d = ±0.1 across the backlash";
-  r.columns = {"t_s", "front_duty", "front_shaft_rad", "front_speed_radps",
-               "rear_duty", "rear_shaft_rad", "rear_speed_radps"};
-  // Alternating +, −, …, ending with − so that the shafts rest at the negative end of the gap,
-  // the state Procedure 4.3 leaves.
-  for (std::size_t k = 0; k < reversals + 1; ++k) {
-    const double d = (reversals - k) % 2 == 0 ? -kReversalDuty : kReversalDuty;
-    MotorVector duty{};
-    duty[kFrontJoint] = d;
-    duty[kRearJoint] = d;
-    const std::vector<BenchSample> samples = bench.hold(duty, kHoldS);
-    for (const BenchSample& s : samples) {
-      r.rows.push_back({s.time_s, s.duty[kFrontJoint], s.position_rad[kFrontJoint],
-                        s.velocity_radps[kFrontJoint], s.duty[kRearJoint],
-                        s.position_rad[kRearJoint], s.velocity_radps[kRearJoint]});
-    }
-    for (std::size_t j = 0; j < 2; ++j) {
-      holds[j].push_back(hold_joints_end(samples, kJoints[j], d, kRestWindowS));
+// Procedures 4.1/4.3 strapped to the ground: the joints initialised, then their shafts reversed
+// at d = ±0.1 across the backlash, hold after hold.
+class JointsProcedure final : public Procedure {
+ public:
+  double default_duration_s() const override {
+    return kHoldS * static_cast<double>(kDefaultReversals);
+  }
+
+  void command(Bench& bench, const Run& run) override {
+    BenchSetup setup;
+    setup.placement = BenchSetup::Placement::kGround;
+    setup.strapped_down = true;
+    setup.instruction =
+        "Procedures 4.1/4.3: joints in vertical configuration (as after start-up); strap the "
+        "rover to the ground so that neither the wheels rotate nor the joints incline";
+    bench.arrange(setup);
+    init_ = initialise_joints(bench);
+    const std::size_t reversals =
+        std::max<std::size_t>(2, static_cast<std::size_t>(run.duration_s / kHoldS));
+    // Alternating +, −, …, ending with − so that the shafts rest at the negative end of the gap,
+    // the state Procedure 4.3 leaves.
+    for (std::size_t k = 0; k < reversals + 1; ++k) {
+      const double d = (reversals - k) % 2 == 0 ? -kReversalDuty : kReversalDuty;
+      MotorVector duty{};
+      duty[kFrontJoint] = d;
+      duty[kRearJoint] = d;
+      const std::vector<BenchSample> samples = bench.hold(duty, kHoldS);
+      for (const BenchSample& s : samples) {
+        rows_.push_back({s.time_s, s.duty[kFrontJoint], s.position_rad[kFrontJoint],
+                         s.velocity_radps[kFrontJoint], s.duty[kRearJoint],
+                         s.position_rad[kRearJoint], s.velocity_radps[kRearJoint]});
+      }
+      for (std::size_t j = 0; j < 2; ++j) {
+        holds_[j].push_back(hold_joints_end(samples, kJoints[j], d, kRestWindowS));
+      }
     }
   }
-  BenchSetup free;
-  free.instruction = "Procedure 4.1 done: unstrap the rover (the joints stay as they are)";
-  bench.arrange(free);
-  ProcedureResult result = fit_joints(holds, init, bench.params().motors);
-  r.gnuplot = kGnuplot;
-  result.recordings.push_back(std::move(r));
-  return result;
-}
+
+  std::optional<BenchSetup> teardown(const Run&) const override {
+    BenchSetup free;
+    free.instruction = "Procedure 4.1 done: unstrap the rover (the joints stay as they are)";
+    return free;
+  }
+
+  ProcedureResult fit(const Run& run) const override {
+    ProcedureResult result = fit_joints(holds_, init_, run.params.motors);
+    Recording r;
+    r.name = "joints";
+    r.title = "Procedure 4.1: joint shafts reversed at d = ±0.1 across the backlash";
+    r.columns = {"t_s", "front_duty", "front_shaft_rad", "front_speed_radps",
+                 "rear_duty", "rear_shaft_rad", "rear_speed_radps"};
+    r.rows = rows_;
+    r.gnuplot = kGnuplot;
+    result.recordings.push_back(std::move(r));
+    return result;
+  }
+
+ private:
+  JointInitialisation init_;
+  std::array<std::vector<JointHold>, 2> holds_;
+  std::vector<std::vector<double>> rows_;
+};
+
+}  // namespace
+
+std::unique_ptr<Procedure> joints_procedure() { return std::make_unique<JointsProcedure>(); }
 
 }  // namespace marsokhod::calibration

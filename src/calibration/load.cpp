@@ -55,13 +55,9 @@ GainFit fit_gains(const std::vector<const LoadSample*>& samples, double phase, d
   return out;
 }
 
-}  // namespace
-
-LoadFit fit_load(const std::vector<LoadSample>& samples, const LoadFitSettings& settings) {
-  if (!(settings.peak_torque_nm > 0.0)) {
-    throw std::invalid_argument("fit_load: the weight's peak torque must be > 0 N·m");
-  }
-  LoadFit fit;
+// The samples within [min_duty, max_duty] with finite values, and how far the wheel turned there.
+std::vector<const LoadSample*> used_samples(const std::vector<LoadSample>& samples,
+                                            const LoadFitSettings& settings, LoadFit& fit) {
   std::vector<const LoadSample*> used;
   double min_p = std::numeric_limits<double>::infinity();
   double max_p = -std::numeric_limits<double>::infinity();
@@ -74,16 +70,11 @@ LoadFit fit_load(const std::vector<LoadSample>& samples, const LoadFitSettings& 
   }
   fit.samples = used.size();
   fit.revolutions = used.empty() ? 0.0 : (max_p - min_p) / (2.0 * std::numbers::pi);
-  if (fit.revolutions < settings.min_revolutions) {
-    fit.problems.push_back("the wheel turned " + fixed(fit.revolutions, 1) +
-                           " revolutions at d ∈ [" + fixed(settings.min_duty, 2) + ", " +
-                           fixed(settings.max_duty, 2) +
-                           "], need " + fixed(settings.min_revolutions, 1) +
-                           ": the sweep is too short (--duration) or the wheel is blocked");
-    return fit;
-  }
+  return used;
+}
 
-  // 1. The phase from the first harmonic.
+// Step 1: the phase from the first harmonic; false (with a problem) when it is not determined.
+bool fit_phase(const std::vector<const LoadSample*>& used, LoadFit& fit) {
   std::vector<std::vector<double>> rows;
   std::vector<double> y;
   for (const LoadSample* s : used) {
@@ -96,24 +87,18 @@ LoadFit fit_load(const std::vector<LoadSample>& samples, const LoadFitSettings& 
   } catch (const std::invalid_argument& e) {
     fit.problems.push_back(std::string("the load is not determined by the data (") + e.what() +
                            ")");
-    return fit;
+    return false;
   }
   const double a = harmonic.coefficients[3];
   const double b = harmonic.coefficients[4];
   fit.amplitude_radps = std::hypot(a, b);
   fit.phase_rad = std::atan2(b, a);
+  return true;
+}
 
-  // 2. B⁺ and B⁻.
-  const GainFit gains = fit_gains(used, fit.phase_rad, settings.peak_torque_nm);
-  if (!gains.ok) {
-    fit.problems.push_back("B⁺ and B⁻ are not determined by the data (the torque never changed "
-                           "sign: did the wheel turn?)");
-    return fit;
-  }
-  fit.same_sign_radps_per_nm = gains.same;
-  fit.opposite_sign_radps_per_nm = gains.opposite;
-  fit.residuals = gains.residuals;
-
+// B± per duty bin (Figure 4.8), NaN where a bin does not determine them.
+void fit_bins(const std::vector<const LoadSample*>& used, const LoadFitSettings& settings,
+              LoadFit& fit) {
   for (std::size_t k = 0; k + 1 < settings.bin_edges.size(); ++k) {
     std::vector<const LoadSample*> bin;
     for (const LoadSample* s : used) {
@@ -125,7 +110,10 @@ LoadFit fit_load(const std::vector<LoadSample>& samples, const LoadFitSettings& 
     fit.bin_same_sign.push_back(g.ok ? g.same : std::nan(""));
     fit.bin_opposite_sign.push_back(g.ok ? g.opposite : std::nan(""));
   }
+}
 
+// The problems of a fit whose B± are determined: noise, no weight, a sign.
+void judge_load(const LoadFitSettings& settings, LoadFit& fit) {
   if (fit.residuals.rms > settings.max_residual_radps) {
     fit.problems.push_back("l scatters by " + fixed(fit.residuals.rms) + " rad/s (rms) about τ·B±, "
                            "more than " + fixed(settings.max_residual_radps) +
@@ -143,91 +131,44 @@ LoadFit fit_load(const std::vector<LoadSample>& samples, const LoadFitSettings& 
                            fixed(fit.opposite_sign_radps_per_nm, 4) +
                            " rad/(s·N·m): both must be positive");
   }
+}
+
+}  // namespace
+
+LoadFit fit_load(const std::vector<LoadSample>& samples, const LoadFitSettings& settings) {
+  if (!(settings.peak_torque_nm > 0.0)) {
+    throw std::invalid_argument("fit_load: the weight's peak torque must be > 0 N·m");
+  }
+  LoadFit fit;
+  const std::vector<const LoadSample*> used = used_samples(samples, settings, fit);
+  if (fit.revolutions < settings.min_revolutions) {
+    fit.problems.push_back("the wheel turned " + fixed(fit.revolutions, 1) +
+                           " revolutions at d ∈ [" + fixed(settings.min_duty, 2) + ", " +
+                           fixed(settings.max_duty, 2) +
+                           "], need " + fixed(settings.min_revolutions, 1) +
+                           ": the sweep is too short (--duration) or the wheel is blocked");
+    return fit;
+  }
+  if (!fit_phase(used, fit)) return fit;
+  // Step 2: B⁺ and B⁻.
+  const GainFit gains = fit_gains(used, fit.phase_rad, settings.peak_torque_nm);
+  if (!gains.ok) {
+    fit.problems.push_back("B⁺ and B⁻ are not determined by the data (the torque never changed "
+                           "sign: did the wheel turn?)");
+    return fit;
+  }
+  fit.same_sign_radps_per_nm = gains.same;
+  fit.opposite_sign_radps_per_nm = gains.opposite;
+  fit.residuals = gains.residuals;
+  fit_bins(used, settings, fit);
+  judge_load(settings, fit);
   return fit;
 }
 
-ProcedureResult calibrate_load(Bench& bench, const ProcedureOptions& options) {
-  const Params& params = bench.params();
-  ProcedureResult result;
-  result.procedure = "load";
-  result.reference = "Procedure 4.13";
-  const double duration_s = duration_of(options, 90.0, result.procedure);
-  const int icr = options.icr.value_or(params.cycle.icr);
-  const std::size_t wheel = kFrontLeft;
-  const adaptation::MotorCurve curve(adaptation::select_motor_curve(params.motor_curves, icr));
-  const double nominal_v = params.motors.nominal_supply_v;
-  const double zeta = params.motors.scale[wheel];
+namespace {
 
-  BenchSetup setup = stand_at_nominal_supply(
-      params, ", and strap the metallic weight tightly to the rim of the front-left wheel "
-              "(Procedure 4.13, Figure 4.7: peak torque " + fixed(kPeakTorqueNm, 2) +
-                  " N·m). The wheel will turn slowly faster for " + fixed(duration_s, 0) + " s.");
-  setup.weight_wheel = wheel;
-  setup.weight_peak_torque_nm = kPeakTorqueNm;
-  bench.arrange(setup);
-  bench.start(icr, params.cycle.con);
-  const double h = bench.period_s();
-  const ResponseParams& response = adaptation::select_response(params.responses, h, bench.con());
-
-  std::vector<double> times;
-  std::vector<double> duties;
-  std::vector<double> positions;
-  std::vector<double> w_hat;
-  std::vector<double> measured;
-  double supply_v = nominal_v;
-  const auto cycles = static_cast<std::size_t>(std::ceil(duration_s / h));
-  for (std::size_t k = 0; k < cycles; ++k) {
-    MotorVector wanted{};
-    wanted[wheel] = kMaxDuty * static_cast<double>(k + 1) / static_cast<double>(cycles);
-    const double supply_sent_v = supply_v;
-    const BenchSample& s = bench.cycle(wanted);
-    if (s.sensors.supply_v > 0.0) supply_v = s.sensors.supply_v;
-    times.push_back(s.time_s);
-    duties.push_back(s.duty[wheel]);
-    positions.push_back(s.position_rad[wheel]);
-    w_hat.push_back(adaptation::no_load_velocity(curve, s.duty[wheel], zeta, supply_sent_v,
-                                                 nominal_v));
-    measured.push_back(s.velocity_radps[wheel]);
-  }
-  bench.stop();
-  BenchSetup off = setup;  // the weight comes off again
-  off.weight_wheel.reset();
-  off.weight_peak_torque_nm = 0.0;
-  off.instruction = "Take the weight off the front-left wheel.";
-  bench.arrange(off);
-
-  const std::vector<double> nu = predict_response(response.delta, w_hat);
-  std::vector<LoadSample> samples;
-  for (std::size_t m = 0; m < times.size(); ++m) {
-    samples.push_back({times[m], duties[m], positions[m], measured[m] - nu[m]});
-  }
-  LoadFitSettings settings;
-  settings.peak_torque_nm = kPeakTorqueNm;
-  const LoadFit fit = fit_load(samples, settings);
-  result.problems = fit.problems;
-
-  toml::table load;
-  load.insert("gain_same_sign_radps_per_nm", std::round(fit.same_sign_radps_per_nm * 1e5) / 1e5);
-  load.insert("gain_opposite_sign_radps_per_nm",
-              std::round(fit.opposite_sign_radps_per_nm * 1e5) / 1e5);
-  result.values.insert("load", std::move(load));
-  result.quality["rms_residual_radps"] = fit.residuals.rms;
-  result.quality["max_abs_residual_radps"] = fit.residuals.max_abs;
-  result.quality["first_harmonic_radps"] = fit.amplitude_radps;
-  result.quality["phase_rad"] = fit.phase_rad;
-  result.quality["revolutions"] = fit.revolutions;
-  result.quality["samples"] = static_cast<double>(fit.samples);
-  result.quality["peak_torque_nm"] = kPeakTorqueNm;
-  result.notes.push_back("B± at icr = " + std::to_string(icr) + " from d ∈ [" +
-                         fixed(settings.min_duty, 1) + ", " + fixed(settings.max_duty, 1) +
-                         "] (4.7)'s constants; per-duty values in the load_gains recording");
-  if (icr != params.cycle.icr) {
-    result.notes.push_back("icr " + std::to_string(icr) + " is not the configured " +
-                           std::to_string(params.cycle.icr) +
-                           ": the driver's [load] holds one pair, for the icr it drives with");
-  }
-
-  // Figure 4.7 right: l against the phase α, coloured by d.
+// Figure 4.7 right: l against the phase α, coloured by d.
+Recording load_recording(const std::vector<LoadSample>& samples, const LoadFit& fit) {
   Recording rec;
   rec.name = "load";
   rec.title = "Procedure 4.13: l = w - nu against the wheel's phase (cf. Figure 4.7)";
@@ -241,13 +182,16 @@ ProcedureResult calibrate_load(Bench& bench, const ProcedureOptions& options) {
     rec.rows.push_back({s.time_s, s.duty, wrapped, s.load_radps, tau, model});
   }
   rec.gnuplot =
-      "set termoption noenhanced\nset key autotitle columnhead\n"
+      std::string(kPlotByColumnHeads) +
       "set xlabel 'alpha [rad]'\nset ylabel 'l [rad/s]'\nset cblabel 'd'\n"
       "plot 'load.csv' using 3:($2 >= 0.3 ? $4 : 1/0):2 with points pt 7 ps 0.3 palette "
       "title 'l (d >= 0.3)', '' using 3:($2 >= 0.3 ? $6 : 1/0) with dots lc 'black' "
       "title 'tau B (fitted)'\n";
-  result.recordings.push_back(std::move(rec));
+  return rec;
+}
 
+// Figure 4.8: B± per duty bin.
+Recording gains_recording(const LoadFit& fit) {
   Recording gains;
   gains.name = "load_gains";
   gains.title = "Procedure 4.13: B+ and B- against the duty (cf. Figure 4.8)";
@@ -256,11 +200,113 @@ ProcedureResult calibrate_load(Bench& bench, const ProcedureOptions& options) {
     gains.rows.push_back({fit.bin_duty[k], fit.bin_same_sign[k], fit.bin_opposite_sign[k]});
   }
   gains.gnuplot =
-      "set termoption noenhanced\nset key autotitle columnhead\n"
+      std::string(kPlotByColumnHeads) +
       "set xlabel 'd'\nset ylabel 'rad/(s N m)'\nset yrange [0:*]\n"
       "plot 'load_gains.csv' using 1:2 with linespoints, '' using 1:3 with linespoints\n";
-  result.recordings.push_back(std::move(gains));
+  return gains;
+}
+
+// Procedure 4.13 on the stand: the weight on the front-left wheel, its duty rising slowly to 0.6.
+class LoadProcedure final : public Procedure {
+ public:
+  double default_duration_s() const override { return 90.0; }
+
+  void prepare(const Run& run) override {
+    curve_.emplace(adaptation::select_motor_curve(run.params.motor_curves, run.icr));
+  }
+
+  std::optional<BenchSetup> setup(const Run& run) const override {
+    BenchSetup setup = stand_for_run(
+        run, ", and strap the metallic weight tightly to the rim of the front-left wheel "
+             "(Procedure 4.13, Figure 4.7: peak torque " + fixed(kPeakTorqueNm, 2) +
+                 " N·m). The wheel will turn slowly faster");
+    setup.weight_wheel = kWheel;
+    setup.weight_peak_torque_nm = kPeakTorqueNm;
+    return setup;
+  }
+
+  void command(Bench& bench, const Run& run) override {
+    response_ = &adaptation::select_response(run.params.responses, run.period_s(), bench.con());
+    Procedure::command(bench, run);
+  }
+
+  std::optional<BenchSetup> teardown(const Run& run) const override {
+    BenchSetup off = *setup(run);  // the weight comes off again
+    off.weight_wheel.reset();
+    off.weight_peak_torque_nm = 0.0;
+    off.instruction = "Take the weight off the front-left wheel.";
+    return off;
+  }
+
+  ProcedureResult fit(const Run& run) const override;
+
+ protected:
+  std::size_t cycles(const Run& run) const override {
+    return static_cast<std::size_t>(std::ceil(run.duration_s / run.period_s()));
+  }
+
+  MotorVector wanted(std::size_t k, double, const Run& run) const override {
+    MotorVector duty{};
+    duty[kWheel] = kMaxDuty * static_cast<double>(k + 1) / static_cast<double>(cycles(run));
+    return duty;
+  }
+
+  void record(const RunCycle& c, const Run& run) override {
+    const BenchSample& s = c.sample;
+    times_.push_back(s.time_s);
+    duties_.push_back(s.duty[kWheel]);
+    positions_.push_back(s.position_rad[kWheel]);
+    w_hat_.push_back(adaptation::no_load_velocity(*curve_, s.duty[kWheel],
+                                                  run.params.motors.scale[kWheel],
+                                                  c.supply_sent_v,
+                                                  run.params.motors.nominal_supply_v));
+    measured_.push_back(s.velocity_radps[kWheel]);
+  }
+
+ private:
+  static constexpr std::size_t kWheel = kFrontLeft;
+  std::optional<adaptation::MotorCurve> curve_;
+  const ResponseParams* response_ = nullptr;
+  std::vector<double> times_, duties_, positions_, w_hat_, measured_;
+};
+
+ProcedureResult LoadProcedure::fit(const Run& run) const {
+  const std::vector<double> nu = predict_response(response_->delta, w_hat_);
+  std::vector<LoadSample> samples;
+  for (std::size_t m = 0; m < times_.size(); ++m) {
+    samples.push_back({times_[m], duties_[m], positions_[m], measured_[m] - nu[m]});
+  }
+  LoadFitSettings settings;
+  settings.peak_torque_nm = kPeakTorqueNm;
+  const LoadFit fit = fit_load(samples, settings);
+  ProcedureResult result;
+  result.problems = fit.problems;
+  toml::table load;
+  load.insert("gain_same_sign_radps_per_nm", rounded(fit.same_sign_radps_per_nm, 1e5));
+  load.insert("gain_opposite_sign_radps_per_nm", rounded(fit.opposite_sign_radps_per_nm, 1e5));
+  result.values.insert("load", std::move(load));
+  result.quality["rms_residual_radps"] = fit.residuals.rms;
+  result.quality["max_abs_residual_radps"] = fit.residuals.max_abs;
+  result.quality["first_harmonic_radps"] = fit.amplitude_radps;
+  result.quality["phase_rad"] = fit.phase_rad;
+  result.quality["revolutions"] = fit.revolutions;
+  result.quality["samples"] = static_cast<double>(fit.samples);
+  result.quality["peak_torque_nm"] = kPeakTorqueNm;
+  result.notes.push_back("B± at icr = " + std::to_string(run.icr) + " from d ∈ [" +
+                         fixed(settings.min_duty, 1) + ", " + fixed(settings.max_duty, 1) +
+                         "] (4.7)'s constants; per-duty values in the load_gains recording");
+  if (run.icr != run.params.cycle.icr) {
+    result.notes.push_back("icr " + std::to_string(run.icr) + " is not the configured " +
+                           std::to_string(run.params.cycle.icr) +
+                           ": the driver's [load] holds one pair, for the icr it drives with");
+  }
+  result.recordings.push_back(load_recording(samples, fit));
+  result.recordings.push_back(gains_recording(fit));
   return result;
 }
+
+}  // namespace
+
+std::unique_ptr<Procedure> load_procedure() { return std::make_unique<LoadProcedure>(); }
 
 }  // namespace marsokhod::calibration

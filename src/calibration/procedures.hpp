@@ -1,13 +1,14 @@
-// The calibration procedures of the thesis, one function each, and the table the
-// `marsokhod calibrate PROCEDURE` command picks from. Each measures on a Bench (the simulated
-// rover or a real bus), fits, and returns a ProcedureResult whose `problems` say why a poor fit
-// must not be written. The fits are separate functions of the measured data so that tests can
-// feed them noisy or short data.
+// The calibration procedures of the thesis and the registry the `marsokhod calibrate PROCEDURE`
+// command picks from. Each procedure is a Procedure (procedure.hpp) — its command on the Bench
+// (the simulated rover or a real bus) and its fit — that run_procedure runs; its result's
+// `problems` say why a poor fit must not be written. The fits are separate functions of the
+// measured data (accelerometer.hpp, voltage.hpp, …) so that tests can feed them noisy or short
+// data.
 #pragma once
 
-#include <filesystem>
-#include <functional>
+#include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "calibration/bench.hpp"
@@ -15,43 +16,24 @@
 
 namespace marsokhod::calibration {
 
-// Procedure 3.3: the ±g table of the accelerometer, axis by axis, on the stand.
-ProcedureResult calibrate_accelerometer(Bench& bench, const ProcedureOptions& options);
-// Procedure 3.5: U = gain·vcc + offset from readings at supply voltages 27 … 20 V.
-ProcedureResult calibrate_voltage(Bench& bench, const ProcedureOptions& options);
-// Procedure 4.3 (with 4.1): joint initialisation, and the joints' backlash.
-ProcedureResult calibrate_joints(Bench& bench, const ProcedureOptions& options);
-// Procedure 4.4: W_icr(d) by a slow pwm sweep on the stand, normalised by Ū/U.
-ProcedureResult calibrate_motor_curve(Bench& bench, const ProcedureOptions& options);
-// Procedure 4.5: ζ_i of each wheel at d = 0.7, with the warm-up of Figure 4.3.
-ProcedureResult calibrate_motor_scale(Bench& bench, const ProcedureOptions& options);
-// Procedure 4.8: δ of (4.4) by least squares from a chirp, for the bench's (h, con).
-ProcedureResult calibrate_response(Bench& bench, const ProcedureOptions& options);
-// Procedure 4.13: B⁺ and B⁻ of (4.6)/(4.7) from a weight strapped to the front-left wheel.
-ProcedureResult calibrate_load(Bench& bench, const ProcedureOptions& options);
-// Procedure 5.1: F̂(c) at several axle distances and the line F(c).
-ProcedureResult calibrate_spin(Bench& bench, const ProcedureOptions& options);
-// Chapter 4.2, (4.5): ξ and Ξ from a recorded drive (options.from: a scenario's --out folder
-// with telemetry.csv). Needs no bench.
-ProcedureResult calibrate_voltage_drop(const Params& params, const ProcedureOptions& options);
-
-struct ProcedureInfo {
-  std::string name;       // "motor-curve"
-  std::string reference;  // "Procedure 4.4"
-  std::string summary;    // one line for --help
-  bool needs_bench = true;  // false: voltage-drop works on a recording
-  // The simulated bench runs on the battery rather than the laboratory tether (whose 6 A limit
-  // a spinning rover exceeds).
-  bool on_battery = false;
-  // bench is nullptr when needs_bench is false.
-  std::function<ProcedureResult(Bench* bench, const Params& params,
-                                const ProcedureOptions& options)>
-      run;
-};
+// The procedures, each a fresh one for one run (registered by name in registry.cpp).
+std::unique_ptr<Procedure> accelerometer_procedure();  // the ±g table, axis by axis, on the stand
+std::unique_ptr<Procedure> voltage_procedure();        // U = gain·vcc + offset, 27 … 20 V
+std::unique_ptr<Procedure> joints_procedure();         // joint initialisation and backlash
+std::unique_ptr<Procedure> motor_curve_procedure();    // W_icr(d) by a slow pwm sweep
+std::unique_ptr<Procedure> motor_scale_procedure();    // ζ_i at d = 0.7 with the warm-up
+std::unique_ptr<Procedure> response_procedure();       // δ of (4.4) from a chirp
+std::unique_ptr<Procedure> load_procedure();           // B⁺, B⁻ from a weight on a wheel
+std::unique_ptr<Procedure> spin_procedure();           // F̂(c) and the line F(c)
+std::unique_ptr<Procedure> voltage_drop_procedure();   // ξ, Ξ of (4.5) from a recording
 
 // In the order of the thesis.
 const std::vector<ProcedureInfo>& procedures();
 // nullptr when there is no procedure of that name.
-const ProcedureInfo* find_procedure(const std::string& name);
+const ProcedureInfo* find_procedure(std::string_view name);
+
+// The procedure of that name on `bench` (std::invalid_argument for an unknown name).
+ProcedureResult run_procedure(Bench& bench, std::string_view name,
+                              const ProcedureOptions& options = {});
 
 }  // namespace marsokhod::calibration

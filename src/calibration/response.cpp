@@ -1,11 +1,14 @@
-// Procedure 4.8: the chirp on the stand and the least-squares δ of (4.4) (response.hpp).
+// Procedure 4.8: the chirp on the stand and the run that fits δ of (4.4) to it (response.hpp).
 #include "calibration/response.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <map>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "calibration/procedures.hpp"
 #include "core/adaptation/motor_curve.hpp"
@@ -13,85 +16,6 @@
 #include "core/adaptation/no_load_velocity.hpp"
 
 namespace marsokhod::calibration {
-namespace {
-
-// The diagonal of (AᵀA)⁻¹ by Gauss–Jordan on the small normal matrix; empty when singular.
-std::vector<double> inverse_diagonal(std::vector<std::vector<double>> m) {
-  const std::size_t n = m.size();
-  std::vector<std::vector<double>> inv(n, std::vector<double>(n, 0.0));
-  for (std::size_t i = 0; i < n; ++i) inv[i][i] = 1.0;
-  for (std::size_t c = 0; c < n; ++c) {
-    std::size_t pivot = c;
-    for (std::size_t r = c + 1; r < n; ++r) {
-      if (std::abs(m[r][c]) > std::abs(m[pivot][c])) pivot = r;
-    }
-    if (!(std::abs(m[pivot][c]) > 0.0)) return {};
-    std::swap(m[c], m[pivot]);
-    std::swap(inv[c], inv[pivot]);
-    const double p = m[c][c];
-    for (std::size_t k = 0; k < n; ++k) {
-      m[c][k] /= p;
-      inv[c][k] /= p;
-    }
-    for (std::size_t r = 0; r < n; ++r) {
-      if (r == c) continue;
-      const double f = m[r][c];
-      for (std::size_t k = 0; k < n; ++k) {
-        m[r][k] -= f * m[c][k];
-        inv[r][k] -= f * inv[c][k];
-      }
-    }
-  }
-  std::vector<double> diagonal(n);
-  for (std::size_t i = 0; i < n; ++i) diagonal[i] = inv[i][i];
-  return diagonal;
-}
-
-// The smallest over the largest eigenvalue of a symmetric matrix (cyclic Jacobi).
-double eigenvalue_ratio(std::vector<std::vector<double>> a) {
-  const std::size_t n = a.size();
-  for (int sweep = 0; sweep < 100; ++sweep) {
-    double off = 0.0;
-    double total = 0.0;
-    for (std::size_t p = 0; p < n; ++p) {
-      for (std::size_t q = 0; q < n; ++q) {
-        total += a[p][q] * a[p][q];
-        if (p != q) off += a[p][q] * a[p][q];
-      }
-    }
-    if (off <= 1e-30 * total) break;
-    for (std::size_t p = 0; p < n; ++p) {
-      for (std::size_t q = p + 1; q < n; ++q) {
-        if (a[p][q] == 0.0) continue;
-        const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-        const double t = (theta >= 0.0 ? 1.0 : -1.0) / (std::abs(theta) + std::hypot(theta, 1.0));
-        const double c = 1.0 / std::hypot(t, 1.0);
-        const double s = t * c;
-        for (std::size_t k = 0; k < n; ++k) {
-          const double kp = a[k][p];
-          const double kq = a[k][q];
-          a[k][p] = c * kp - s * kq;
-          a[k][q] = s * kp + c * kq;
-        }
-        for (std::size_t k = 0; k < n; ++k) {
-          const double pk = a[p][k];
-          const double qk = a[q][k];
-          a[p][k] = c * pk - s * qk;
-          a[q][k] = s * pk + c * qk;
-        }
-      }
-    }
-  }
-  double smallest = std::numeric_limits<double>::infinity();
-  double largest = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    smallest = std::min(smallest, a[i][i]);
-    largest = std::max(largest, a[i][i]);
-  }
-  return largest > 0.0 ? std::max(0.0, smallest) / largest : 0.0;
-}
-
-}  // namespace
 
 double Chirp::frequency_hz(double t_s) const {
   return start_hz + (end_hz - start_hz) * t_s / duration_s;
@@ -128,242 +52,35 @@ std::vector<double> predict_response(const std::vector<double>& delta,
   return nu;
 }
 
-ResponseFit fit_response(const std::vector<ResponseSeries>& wheels,
-                         const ResponseFitSettings& settings) {
-  if (settings.order == 0) throw std::invalid_argument("fit_response: the order N must be ≥ 1");
-  for (const ResponseSeries& s : wheels) {
-    if (s.commanded_radps.size() != s.measured_radps.size()) {
-      throw std::invalid_argument("fit_response: ŵ and w of a wheel differ in length");
-    }
-  }
-  ResponseFit fit;
-  const std::size_t n = settings.order;
-  fit.delta.assign(n + 1, 0.0);
-  fit.standard_error.assign(n + 1, 0.0);
-  std::size_t shortest = wheels.empty() ? 0 : wheels.front().measured_radps.size();
-  for (const ResponseSeries& s : wheels) shortest = std::min(shortest, s.measured_radps.size());
-  fit.duration_s = static_cast<double>(shortest) * settings.period_s;
-  if (wheels.empty() || fit.duration_s < settings.min_duration_s) {
-    fit.problems.push_back("the chirp is too short: " + fixed(fit.duration_s, 1) +
-                           " s, need at least " + fixed(settings.min_duration_s, 1) +
-                           " s (--duration; the thesis ran 2 min)");
-    return fit;
-  }
+namespace {
 
-  // Rows: [ŵ_(m−1), …, ŵ_(m−N)] → v_m, for m ≥ N of every wheel.
-  std::vector<std::vector<double>> rows;
-  std::vector<double> y;
-  for (const ResponseSeries& s : wheels) {
-    for (std::size_t m = n; m < s.measured_radps.size(); ++m) {
-      std::vector<double> row(n);
-      for (std::size_t j = 1; j <= n; ++j) row[j - 1] = s.commanded_radps[m - j];
-      rows.push_back(std::move(row));
-      y.push_back(s.measured_radps[m]);
-    }
-  }
-  fit.rows = rows.size();
+constexpr double kLeadIn_s = 2.0;  // from rest up to the chirp's centre, not fitted
+constexpr double kCenter_radps = 1.2;
 
-  // The command's excitation: the covariance of N consecutive ŵ (each wheel's mean removed).
-  {
-    std::vector<std::vector<double>> covariance(n, std::vector<double>(n, 0.0));
-    std::size_t count = 0;
-    for (const ResponseSeries& s : wheels) {
-      const double centre = mean(s.commanded_radps);
-      for (std::size_t m = n - 1; m < s.commanded_radps.size(); ++m) {
-        for (std::size_t a = 0; a < n; ++a) {
-          for (std::size_t b = 0; b < n; ++b) {
-            covariance[a][b] +=
-                (s.commanded_radps[m - a] - centre) * (s.commanded_radps[m - b] - centre);
-          }
-        }
-        ++count;
-      }
-    }
-    fit.excitation = count > 0 ? eigenvalue_ratio(covariance) : 0.0;
-    if (!(fit.excitation >= settings.min_excitation)) {
-      fit.problems.push_back("the command covers too few frequencies to tell " +
-                             std::to_string(n) + " lags apart (excitation " +
-                             fixed(fit.excitation, 6) + ", need " +
-                             fixed(settings.min_excitation, 6) +
-                             "): assign a chirp rising to near 1/(2h)");
+// ν of the configured δ on the chirp: the rms of w − ν over every wheel (into `quality`) and ν
+// of the first wheel (empty without a configured table).
+std::vector<double> configured_response(const std::vector<ResponseSeries>& series,
+                                        const ResponseParams* configured, std::size_t order,
+                                        std::map<std::string, double>& quality) {
+  if (configured == nullptr || series.empty()) return {};
+  std::vector<double> pooled_err;
+  for (const ResponseSeries& s : series) {
+    const std::vector<double> nu = predict_response(configured->delta, s.commanded_radps);
+    for (std::size_t m = order; m < nu.size(); ++m) {
+      pooled_err.push_back(s.measured_radps[m] - nu[m]);
     }
   }
-  LeastSquaresFit ls;
-  try {
-    ls = fit_least_squares(rows, y);
-  } catch (const std::invalid_argument& e) {
-    fit.problems.push_back(std::string("δ is not determined by the data (") + e.what() +
-                           "): the command must oscillate over many frequencies (a chirp), "
-                           "not hold still or repeat one frequency");
-    return fit;
+  double sum = 0.0;
+  for (const double e : pooled_err) sum += e * e;
+  if (!pooled_err.empty()) {
+    quality["rms_residual_configured_radps"] =
+        std::sqrt(sum / static_cast<double>(pooled_err.size()));
   }
-  for (std::size_t j = 1; j <= n; ++j) fit.delta[j] = ls.coefficients[j - 1];
-  fit.residuals = ls.residuals;
-  for (const double d : fit.delta) fit.sum += d;
-
-  // Standard errors: σ²·diag((AᵀA)⁻¹), with the residuals' lag-1 correlation shrinking the
-  // number of independent rows (they are smooth, not white).
-  std::vector<std::vector<double>> normal(n, std::vector<double>(n, 0.0));
-  std::vector<double> residual(rows.size());
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    double predicted = 0.0;
-    for (std::size_t a = 0; a < n; ++a) {
-      predicted += rows[r][a] * ls.coefficients[a];
-      for (std::size_t b = 0; b < n; ++b) normal[a][b] += rows[r][a] * rows[r][b];
-    }
-    residual[r] = y[r] - predicted;
-  }
-  double rss = 0.0;
-  double lag1 = 0.0;
-  for (std::size_t r = 0; r < residual.size(); ++r) {
-    rss += residual[r] * residual[r];
-    if (r > 0) lag1 += residual[r] * residual[r - 1];
-  }
-  const double rho = rss > 0.0 ? std::clamp(lag1 / rss, 0.0, 0.99) : 0.0;
-  const double inflation = (1.0 + rho) / (1.0 - rho);
-  const double sigma2 =
-      rss / static_cast<double>(std::max<std::size_t>(rows.size() - n, 1)) * inflation;
-  const std::vector<double> diagonal = inverse_diagonal(normal);
-  double worst = 0.0;
-  std::size_t worst_j = 0;
-  for (std::size_t j = 1; j <= n; ++j) {
-    fit.standard_error[j] =
-        diagonal.empty() ? std::numeric_limits<double>::infinity() : std::sqrt(std::max(0.0, sigma2 * diagonal[j - 1]));
-    if (fit.standard_error[j] > worst) {
-      worst = fit.standard_error[j];
-      worst_j = j;
-    }
-  }
-  if (fit.residuals.rms > settings.max_residual_radps) {
-    fit.problems.push_back("w − ν scatters by " + fixed(fit.residuals.rms) +
-                           " rad/s (rms), more than " + fixed(settings.max_residual_radps) +
-                           " rad/s: the data is too noisy or the wheels are not free");
-  }
-  if (!(worst <= settings.max_standard_error)) {
-    fit.problems.push_back("δ^" + std::to_string(worst_j) + " = " + fixed(fit.delta[worst_j]) +
-                           " is uncertain by ±" + fixed(worst, 4) + " (limit ±" +
-                           fixed(settings.max_standard_error, 4) +
-                           "): the chirp is too short, covers too few frequencies, or the data "
-                           "is too noisy");
-  }
-  return fit;
+  return predict_response(configured->delta, series.front().commanded_radps);
 }
 
-ProcedureResult calibrate_response(Bench& bench, const ProcedureOptions& options) {
-  const Params& params = bench.params();
-  ProcedureResult result;
-  result.procedure = "response";
-  result.reference = "Procedure 4.8";
-  const double duration_s = duration_of(options, 120.0, result.procedure);
-  const int icr = options.icr.value_or(params.cycle.icr);
-  const adaptation::MotorCurve curve(adaptation::select_motor_curve(params.motor_curves, icr));
-  const double nominal_v = params.motors.nominal_supply_v;
-  const std::vector<std::size_t> wheels = all_wheels();
-
-  bench.arrange(stand_at_nominal_supply(
-      params, " (Procedure 4.8). The wheels will oscillate faster and faster for " +
-                  fixed(duration_s, 0) + " s."));
-  bench.start(icr, params.cycle.con);
-  const double h = bench.period_s();
-
-  // The chirp of Figure 4.4 up to 0.9 of the Nyquist frequency, each step within 80 % of the
-  // duty's slew limit (W′ ≈ 3 rad/s per unit duty).
-  Chirp chirp;
-  chirp.duration_s = duration_s;
-  chirp.period_s = h;
-  chirp.end_hz = 0.45 / h;
-  chirp.max_step_radps = 0.8 * params.safety.max_duty_step * 3.0;
-  const double lead_in_s = 2.0;  // from rest up to the centre, not fitted
-  constexpr double kCenter_radps = 1.2;
-  chirp.center_radps = kCenter_radps;
-
-  std::vector<ResponseSeries> series(wheels.size());
-  std::vector<double> times;
-  double supply_v = nominal_v;
-  const auto lead_cycles = static_cast<std::size_t>(std::ceil(lead_in_s / h));
-  const auto chirp_cycles = static_cast<std::size_t>(std::ceil(duration_s / h));
-  for (std::size_t k = 0; k < lead_cycles + chirp_cycles; ++k) {
-    const bool lead = k < lead_cycles;
-    const double target =
-        lead ? kCenter_radps * static_cast<double>(k + 1) / static_cast<double>(lead_cycles)
-             : chirp(static_cast<double>(k - lead_cycles) * h);
-    MotorVector wanted{};
-    for (const std::size_t w : wheels) {
-      wanted[w] = adaptation::duty_for_no_load_velocity(curve, target, params.motors.scale[w],
-                                                        supply_v, nominal_v);
-    }
-    const double supply_sent_v = supply_v;  // the U the driver would use for ŵ of this duty
-    const BenchSample& s = bench.cycle(wanted);
-    if (s.sensors.supply_v > 0.0) supply_v = s.sensors.supply_v;
-    if (lead) continue;
-    times.push_back(s.time_s);
-    for (std::size_t i = 0; i < wheels.size(); ++i) {
-      const std::size_t w = wheels[i];
-      series[i].commanded_radps.push_back(adaptation::no_load_velocity(
-          curve, s.duty[w], params.motors.scale[w], supply_sent_v, nominal_v));
-      series[i].measured_radps.push_back(s.velocity_radps[w]);
-    }
-  }
-  bench.stop();
-
-  ResponseFitSettings settings;
-  settings.period_s = h;
-  const ResponseFit fit = fit_response(series, settings);
-  result.problems = fit.problems;
-
-  toml::table entry;
-  entry.insert("period_s", std::round(h * 1e6) / 1e6);
-  entry.insert("con", bench.con());
-  toml::array delta;
-  for (const double d : fit.delta) delta.push_back(std::round(d * 1e4) / 1e4);
-  entry.insert("delta", std::move(delta));
-  toml::array responses;
-  responses.push_back(std::move(entry));
-  result.values.insert("response", std::move(responses));
-
-  // The configured δ on the same data, for comparison.
-  const ResponseParams* configured = nullptr;
-  try {
-    configured = &adaptation::select_response(params.responses, h, bench.con());
-  } catch (const std::invalid_argument&) {
-    configured = nullptr;
-  }
-  std::vector<double> fitted_nu;
-  std::vector<double> configured_nu;
-  if (!series.empty()) {
-    fitted_nu = predict_response(fit.delta, series.front().commanded_radps);
-    if (configured != nullptr) {
-      std::vector<double> pooled_err;
-      for (const ResponseSeries& s : series) {
-        const std::vector<double> nu = predict_response(configured->delta, s.commanded_radps);
-        for (std::size_t m = settings.order; m < nu.size(); ++m) {
-          pooled_err.push_back(s.measured_radps[m] - nu[m]);
-        }
-      }
-      double sum = 0.0;
-      for (const double e : pooled_err) sum += e * e;
-      if (!pooled_err.empty()) {
-        result.quality["rms_residual_configured_radps"] =
-            std::sqrt(sum / static_cast<double>(pooled_err.size()));
-      }
-      configured_nu = predict_response(configured->delta, series.front().commanded_radps);
-    }
-  }
-  result.quality["rms_residual_radps"] = fit.residuals.rms;
-  result.quality["max_abs_residual_radps"] = fit.residuals.max_abs;
-  result.quality["delta_sum"] = fit.sum;
-  result.quality["excitation"] = fit.excitation;
-  double worst_se = 0.0;
-  for (const double se : fit.standard_error) worst_se = std::max(worst_se, se);
-  result.quality["max_standard_error"] = worst_se;
-  result.quality["duration_s"] = fit.duration_s;
-  result.quality["rows"] = static_cast<double>(fit.rows);
-  result.quality["period_s"] = h;
-  result.notes.push_back("δ for h = " + fixed(h, 4) + " s, con = " + std::to_string(bench.con()) +
-                         "; ŵ used the configured ζ and W_" + std::to_string(icr) +
-                         " (calibrate motor-curve and motor-scale first)");
-
-  // Figure 4.5 left: δ^j at t = −j·h.
+// Figure 4.5 left: δ^j at t = −j·h.
+Recording delta_recording(const ResponseFit& fit, const ResponseParams* configured, double h) {
   Recording coefficients;
   coefficients.name = "response_delta";
   coefficients.title = "Procedure 4.8: coefficients δ^j (cf. Figure 4.5 left)";
@@ -375,16 +92,20 @@ ProcedureResult calibrate_response(Bench& bench, const ProcedureOptions& options
                                  fit.delta[j], fit.standard_error[j], nominal});
   }
   coefficients.gnuplot =
-      "set termoption noenhanced\nset key autotitle columnhead\n"
+      std::string(kPlotByColumnHeads) +
       "set title 'Procedure 4.8: δ^j against the time −j·h (cf. Figure 4.5 left)'\n"
       "set xlabel 'time [s]'\nset ylabel 'δ'\nset style fill solid 0.6\n"
       "set boxwidth 0.005\nset xrange [*:0.01]\n"
       "plot 'response_delta.csv' using ($2-0.003):3 with boxes title 'fitted', "
       "'' using ($2-0.003):3:4 with yerrorbars lc 'black' pt 0 title 'standard error', "
       "'' using ($2+0.003):5 with boxes fill pattern 4 title 'configured'\n";
-  result.recordings.push_back(std::move(coefficients));
+  return coefficients;
+}
 
-  // Figures 4.4 and 4.5 right: the chirp ŵ, the measured w and ν of the first wheel.
+// Figures 4.4 and 4.5 right: the chirp ŵ, the measured w and ν of the first wheel.
+Recording chirp_recording(const std::vector<ResponseSeries>& series,
+                          const std::vector<double>& times, const std::vector<double>& fitted_nu,
+                          const std::vector<double>& configured_nu) {
   Recording run;
   run.name = "response_chirp";
   run.title = "Procedure 4.8: chirp, measured w and ν (cf. Figures 4.4, 4.5 right)";
@@ -399,7 +120,7 @@ ProcedureResult calibrate_response(Bench& bench, const ProcedureOptions& options
     }
   }
   run.gnuplot =
-      "set termoption noenhanced\nset key autotitle columnhead\n"
+      std::string(kPlotByColumnHeads) +
       "set multiplot layout 2,1\n"
       "set xlabel 'time [s]'\nset ylabel 'rad/s'\n"
       "plot 'response_chirp.csv' using 1:2 with lines, '' using 1:3 with lines, "
@@ -409,8 +130,128 @@ ProcedureResult calibrate_response(Bench& bench, const ProcedureOptions& options
       "plot 'response_chirp.csv' using 1:2 with linespoints, '' using 1:3 with linespoints, "
       "'' using 1:4 with linespoints, '' using 1:6 with lines dt 2\n"
       "unset multiplot\n";
-  result.recordings.push_back(std::move(run));
+  return run;
+}
+
+void add_response_quality(const ResponseFit& fit, double h, ProcedureResult& result) {
+  result.quality["rms_residual_radps"] = fit.residuals.rms;
+  result.quality["max_abs_residual_radps"] = fit.residuals.max_abs;
+  result.quality["delta_sum"] = fit.sum;
+  result.quality["excitation"] = fit.excitation;
+  double worst_se = 0.0;
+  for (const double se : fit.standard_error) worst_se = std::max(worst_se, se);
+  result.quality["max_standard_error"] = worst_se;
+  result.quality["duration_s"] = fit.duration_s;
+  result.quality["rows"] = static_cast<double>(fit.rows);
+  result.quality["period_s"] = h;
+}
+
+// Procedure 4.8 on the stand: the wheels follow the chirp of Figure 4.4 (after a lead-in from
+// rest), and δ is fitted to every wheel's ŵ and w.
+class ResponseProcedure final : public Procedure {
+ public:
+  double default_duration_s() const override { return 120.0; }
+
+  void prepare(const Run& run) override {
+    curve_.emplace(adaptation::select_motor_curve(run.params.motor_curves, run.icr));
+    // Up to 0.9 of the Nyquist frequency, each step within 80 % of the duty's slew limit
+    // (W′ ≈ 3 rad/s per unit duty).
+    const double h = run.period_s();
+    chirp_.duration_s = run.duration_s;
+    chirp_.period_s = h;
+    chirp_.end_hz = 0.45 / h;
+    chirp_.max_step_radps = 0.8 * run.params.safety.max_duty_step * 3.0;
+    chirp_.center_radps = kCenter_radps;
+    lead_cycles_ = static_cast<std::size_t>(std::ceil(kLeadIn_s / h));
+    series_.assign(wheels_.size(), {});
+  }
+
+  std::optional<BenchSetup> setup(const Run& run) const override {
+    return stand_for_run(run, " (Procedure 4.8). The wheels will oscillate faster and faster");
+  }
+
+  ProcedureResult fit(const Run& run) const override;
+
+ protected:
+  std::size_t cycles(const Run& run) const override {
+    return lead_cycles_ + static_cast<std::size_t>(std::ceil(run.duration_s / run.period_s()));
+  }
+
+  MotorVector wanted(std::size_t k, double supply_v, const Run& run) const override {
+    const double target =
+        k < lead_cycles_
+            ? kCenter_radps * static_cast<double>(k + 1) / static_cast<double>(lead_cycles_)
+            : chirp_(static_cast<double>(k - lead_cycles_) * run.period_s());
+    MotorVector duty{};
+    for (const std::size_t w : wheels_) {
+      duty[w] = adaptation::duty_for_no_load_velocity(*curve_, target, run.params.motors.scale[w],
+                                                      supply_v, run.params.motors.nominal_supply_v);
+    }
+    return duty;
+  }
+
+  void record(const RunCycle& c, const Run& run) override {
+    if (c.k < lead_cycles_) return;
+    times_.push_back(c.sample.time_s);
+    for (std::size_t i = 0; i < wheels_.size(); ++i) {
+      const std::size_t w = wheels_[i];
+      series_[i].commanded_radps.push_back(adaptation::no_load_velocity(
+          *curve_, c.sample.duty[w], run.params.motors.scale[w], c.supply_sent_v,
+          run.params.motors.nominal_supply_v));
+      series_[i].measured_radps.push_back(c.sample.velocity_radps[w]);
+    }
+  }
+
+ private:
+  const std::vector<std::size_t> wheels_ = all_wheels();
+  std::optional<adaptation::MotorCurve> curve_;
+  Chirp chirp_;
+  std::size_t lead_cycles_ = 0;
+  std::vector<ResponseSeries> series_;
+  std::vector<double> times_;
+};
+
+ProcedureResult ResponseProcedure::fit(const Run& run) const {
+  const double h = run.period_s();
+  const int con = run.params.cycle.con;
+  ResponseFitSettings settings;
+  settings.period_s = h;
+  const ResponseFit fit = fit_response(series_, settings);
+  ProcedureResult result;
+  result.problems = fit.problems;
+  toml::table entry;
+  entry.insert("period_s", rounded(h, 1e6));
+  entry.insert("con", con);
+  toml::array delta;
+  for (const double d : fit.delta) delta.push_back(rounded(d, 1e4));
+  entry.insert("delta", std::move(delta));
+  toml::array responses;
+  responses.push_back(std::move(entry));
+  result.values.insert("response", std::move(responses));
+
+  // The configured δ on the same data, for comparison.
+  const ResponseParams* configured = nullptr;
+  try {
+    configured = &adaptation::select_response(run.params.responses, h, con);
+  } catch (const std::invalid_argument&) {
+    configured = nullptr;
+  }
+  const std::vector<double> configured_nu =
+      configured_response(series_, configured, settings.order, result.quality);
+  const std::vector<double> fitted_nu =
+      series_.empty() ? std::vector<double>{}
+                      : predict_response(fit.delta, series_.front().commanded_radps);
+  add_response_quality(fit, h, result);
+  result.notes.push_back("δ for h = " + fixed(h, 4) + " s, con = " + std::to_string(con) +
+                         "; ŵ used the configured ζ and W_" + std::to_string(run.icr) +
+                         " (calibrate motor-curve and motor-scale first)");
+  result.recordings.push_back(delta_recording(fit, configured, h));
+  result.recordings.push_back(chirp_recording(series_, times_, fitted_nu, configured_nu));
   return result;
 }
+
+}  // namespace
+
+std::unique_ptr<Procedure> response_procedure() { return std::make_unique<ResponseProcedure>(); }
 
 }  // namespace marsokhod::calibration

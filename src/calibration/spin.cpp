@@ -162,8 +162,6 @@ void add_recordings(ProcedureResult& result, const std::vector<SpinSweep>& sweep
 
 ProcedureResult fit_spin(const std::vector<SpinSweep>& sweeps, const SpinLimits& limits) {
   ProcedureResult result;
-  result.procedure = "spin";
-  result.reference = "Procedure 5.1";
   std::vector<SpinPoint> points;
   for (const SpinSweep& sweep : sweeps) {
     points.push_back(spin_point(sweep, limits, result.problems));
@@ -245,61 +243,84 @@ SpinSweep run_spin_sweep(Bench& bench, double clearance_m, double ramp_s,
   return sweep;
 }
 
-ProcedureResult calibrate_spin(Bench& bench, const ProcedureOptions& options) {
-  if (!bench.started()) bench.start(bench.params().cycle.icr, bench.params().cycle.con);
-  const GeometryParams& geometry = bench.params().geometry;
-  const double ramp_s = options.duration_s.value_or(kDefaultRampS);
-  BenchSetup ground;
-  ground.instruction =
-      "Procedure 5.1: set the rover on flat ground of one texture with room to spin, joints in "
-      "vertical configuration";
-  bench.arrange(ground);
-  initialise_joints(bench);
-  JointMover mover(bench);
-  std::vector<SpinSweep> sweeps;
-  for (double c : spin_clearances_m()) {
-    const double gamma = bending_for_clearance(c, geometry);
-    BenchSetup stand;
-    stand.placement = BenchSetup::Placement::kStand;
-    stand.instruction = "Procedure 5.1, c = " + fixed(c) +
-                        " m: lift the rover onto the stand (wheels free) so that the joints can "
-                        "be set";
-    bench.arrange(stand);
-    if (!mover.move_to(bench, -gamma, gamma)) {
+namespace {
+
+// Procedure 5.1: the joints initialised on the ground, then at each axle distance the joints set
+// on the stand and a spin on the ground; at the end the joints contracted again.
+class SpinProcedure final : public Procedure {
+ public:
+  double default_duration_s() const override { return kDefaultRampS; }
+
+  void command(Bench& bench, const Run& run) override {
+    const GeometryParams& geometry = run.params.geometry;
+    BenchSetup ground;
+    ground.instruction =
+        "Procedure 5.1: set the rover on flat ground of one texture with room to spin, joints in "
+        "vertical configuration";
+    bench.arrange(ground);
+    initialise_joints(bench);
+    JointMover mover(bench);
+    for (double c : spin_clearances_m()) {
+      const double gamma = bending_for_clearance(c, geometry);
+      arrange_on_stand(bench, "Procedure 5.1, c = " + fixed(c) +
+                                  " m: lift the rover onto the stand (wheels free) so that the "
+                                  "joints can be set");
+      if (!mover.move_to(bench, -gamma, gamma)) {
+        failure_ = "the joints did not reach γ = " + fixed(gamma) + " rad for c = " + fixed(c) +
+                   " m: are they initialised (Procedure 4.3) and free to move?";
+        return;
+      }
+      const auto reached = mover.joint_rad();
+      const double reached_c =
+          0.5 *
+          (mobility::axle_clearance_m(mobility::front_joint_bending_rad(reached[0]), geometry) +
+           mobility::axle_clearance_m(mobility::rear_joint_bending_rad(reached[1]), geometry));
+      BenchSetup down;
+      down.placement = BenchSetup::Placement::kGround;
+      down.instruction = "Procedure 5.1, c = " + fixed(c) +
+                         " m: set the rover down on the flat ground, with room to spin";
+      bench.arrange(down);
+      sweeps_.push_back(run_spin_sweep(bench, reached_c, run.duration_s));
+    }
+    // Back to the vertical configuration the procedure started from.
+    arrange_on_stand(bench,
+                     "Procedure 5.1 done: lift the rover onto the stand to contract the joints");
+    const double contracted = mobility::contracted_bending_rad(geometry);
+    contracted_ = mover.move_to(bench, -contracted, contracted);
+    BenchSetup back;
+    back.instruction = "Procedure 5.1 done: set the rover back on the ground";
+    bench.arrange(back);
+  }
+
+  ProcedureResult fit(const Run&) const override {
+    if (!failure_.empty()) {
       ProcedureResult failed;
-      failed.procedure = "spin";
-      failed.reference = "Procedure 5.1";
-      failed.problems.push_back("the joints did not reach γ = " + fixed(gamma) +
-                                " rad for c = " + fixed(c) +
-                                " m: are they initialised (Procedure 4.3) and free to move?");
+      failed.problems.push_back(failure_);
       return failed;
     }
-    const auto reached = mover.joint_rad();
-    const double reached_c =
-        0.5 * (mobility::axle_clearance_m(mobility::front_joint_bending_rad(reached[0]), geometry) +
-               mobility::axle_clearance_m(mobility::rear_joint_bending_rad(reached[1]), geometry));
-    BenchSetup down;
-    down.placement = BenchSetup::Placement::kGround;
-    down.instruction = "Procedure 5.1, c = " + fixed(c) +
-                       " m: set the rover down on the flat ground, with room to spin";
-    bench.arrange(down);
-    sweeps.push_back(run_spin_sweep(bench, reached_c, ramp_s));
+    ProcedureResult result = fit_spin(sweeps_);
+    if (!contracted_) {
+      result.notes.push_back("the joints did not return to the vertical configuration: contract "
+                             "them before driving");
+    }
+    return result;
   }
-  ProcedureResult result = fit_spin(sweeps);
-  // Back to the vertical configuration the procedure started from.
-  BenchSetup stand;
-  stand.placement = BenchSetup::Placement::kStand;
-  stand.instruction = "Procedure 5.1 done: lift the rover onto the stand to contract the joints";
-  bench.arrange(stand);
-  const double contracted = mobility::contracted_bending_rad(geometry);
-  if (!mover.move_to(bench, -contracted, contracted)) {
-    result.notes.push_back("the joints did not return to the vertical configuration: contract "
-                           "them before driving");
+
+ private:
+  static void arrange_on_stand(Bench& bench, std::string instruction) {
+    BenchSetup stand;
+    stand.placement = BenchSetup::Placement::kStand;
+    stand.instruction = std::move(instruction);
+    bench.arrange(stand);
   }
-  BenchSetup back;
-  back.instruction = "Procedure 5.1 done: set the rover back on the ground";
-  bench.arrange(back);
-  return result;
-}
+
+  std::vector<SpinSweep> sweeps_;
+  std::string failure_;
+  bool contracted_ = true;
+};
+
+}  // namespace
+
+std::unique_ptr<Procedure> spin_procedure() { return std::make_unique<SpinProcedure>(); }
 
 }  // namespace marsokhod::calibration

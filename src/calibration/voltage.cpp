@@ -12,25 +12,12 @@ namespace {
 constexpr double kVoltages[] = {27.0, 26.0, 25.0, 24.0, 23.0, 22.0, 21.0, 20.0};
 constexpr double kHoldS = 2.0;
 
-}  // namespace
-
-ProcedureResult fit_voltage(const std::vector<VoltagePoint>& points,
-                            const VoltageFitLimits& limits) {
-  ProcedureResult result;
-  result.procedure = "voltage";
-  result.reference = "Procedure 3.5";
-  if (points.size() < limits.min_points) {
-    result.problems.push_back("only " + std::to_string(points.size()) + " supply voltages; " +
-                              "the fit needs at least " + std::to_string(limits.min_points));
-    return result;
-  }
-  std::vector<double> vcc;
-  std::vector<double> volts;
+// The problems of points with few or wandering readings, and of voltages that span too little.
+void judge_points(const std::vector<VoltagePoint>& points, const VoltageFitLimits& limits,
+                  ProcedureResult& result) {
   double lowest = points.front().measured_v;
   double highest = lowest;
   for (const VoltagePoint& p : points) {
-    vcc.push_back(p.vcc_mean_counts);
-    volts.push_back(p.measured_v);
     lowest = std::min(lowest, p.measured_v);
     highest = std::max(highest, p.measured_v);
     if (p.samples < limits.min_samples_per_point) {
@@ -49,6 +36,25 @@ ProcedureResult fit_voltage(const std::vector<VoltagePoint>& points,
     result.problems.push_back("the voltages span only " + fixed(highest - lowest, 2) +
                               " V (at least " + fixed(limits.min_span_v, 1) + " V)");
   }
+}
+
+}  // namespace
+
+ProcedureResult fit_voltage(const std::vector<VoltagePoint>& points,
+                            const VoltageFitLimits& limits) {
+  ProcedureResult result;
+  if (points.size() < limits.min_points) {
+    result.problems.push_back("only " + std::to_string(points.size()) + " supply voltages; " +
+                              "the fit needs at least " + std::to_string(limits.min_points));
+    return result;
+  }
+  std::vector<double> vcc;
+  std::vector<double> volts;
+  for (const VoltagePoint& p : points) {
+    vcc.push_back(p.vcc_mean_counts);
+    volts.push_back(p.measured_v);
+  }
+  judge_points(points, limits, result);
   LineFit fit;
   try {
     fit = fit_line(vcc, volts);
@@ -89,38 +95,57 @@ ProcedureResult fit_voltage(const std::vector<VoltagePoint>& points,
   return result;
 }
 
-ProcedureResult calibrate_voltage(Bench& bench, const ProcedureOptions& options) {
-  if (!bench.started()) bench.start(bench.params().cycle.icr, bench.params().cycle.con);
-  const double hold_s = options.duration_s.value_or(kHoldS * std::size(kVoltages)) /
-                        static_cast<double>(std::size(kVoltages));
-  std::vector<VoltagePoint> points;
-  for (double volts : kVoltages) {
-    BenchSetup setup;
-    setup.placement = BenchSetup::Placement::kGround;
-    setup.supply_v = volts;
-    setup.instruction = "Procedure 3.5 at " + fixed(volts, 1) +
-                        " V: the rover on the laboratory supply, motors off, a multimeter at "
-                        "the power distribution board";
-    bench.arrange(setup);
-    std::vector<double> readings;
-    for (const BenchSample& s : bench.hold(MotorVector{}, hold_s)) {
-      if (s.raw) readings.push_back(s.raw->vcc);
-    }
-    VoltagePoint p;
-    p.measured_v = bench.measure_supply_v();
-    p.samples = readings.size();
-    if (!readings.empty()) {
-      p.vcc_mean_counts = mean(readings);
-      p.vcc_sd_counts = standard_deviation(readings);
-    }
-    points.push_back(p);
+namespace {
+
+// Procedure 3.5 on the ground: the laboratory supply set to each voltage in turn, the motors off,
+// µ8's vcc held and the multimeter read.
+class VoltageProcedure final : public Procedure {
+ public:
+  double default_duration_s() const override {
+    return kHoldS * static_cast<double>(std::size(kVoltages));
   }
+
+  void command(Bench& bench, const Run& run) override {
+    const double hold_s = run.duration_s / static_cast<double>(std::size(kVoltages));
+    for (double volts : kVoltages) {
+      BenchSetup setup;
+      setup.placement = BenchSetup::Placement::kGround;
+      setup.supply_v = volts;
+      setup.instruction = "Procedure 3.5 at " + fixed(volts, 1) +
+                          " V: the rover on the laboratory supply, motors off, a multimeter at "
+                          "the power distribution board";
+      bench.arrange(setup);
+      std::vector<double> readings;
+      for (const BenchSample& s : bench.hold(MotorVector{}, hold_s)) {
+        if (s.raw) readings.push_back(s.raw->vcc);
+      }
+      VoltagePoint p;
+      p.measured_v = bench.measure_supply_v();
+      p.samples = readings.size();
+      if (!readings.empty()) {
+        p.vcc_mean_counts = mean(readings);
+        p.vcc_sd_counts = standard_deviation(readings);
+      }
+      points_.push_back(p);
+    }
+  }
+
   // Back to the nominal supply, as the other procedures expect.
-  BenchSetup nominal;
-  nominal.supply_v = bench.params().motors.nominal_supply_v;
-  nominal.instruction = "Set the laboratory supply back to the nominal voltage";
-  bench.arrange(nominal);
-  return fit_voltage(points);
-}
+  std::optional<BenchSetup> teardown(const Run& run) const override {
+    BenchSetup nominal;
+    nominal.supply_v = run.params.motors.nominal_supply_v;
+    nominal.instruction = "Set the laboratory supply back to the nominal voltage";
+    return nominal;
+  }
+
+  ProcedureResult fit(const Run&) const override { return fit_voltage(points_); }
+
+ private:
+  std::vector<VoltagePoint> points_;
+};
+
+}  // namespace
+
+std::unique_ptr<Procedure> voltage_procedure() { return std::make_unique<VoltageProcedure>(); }
 
 }  // namespace marsokhod::calibration

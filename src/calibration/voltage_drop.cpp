@@ -172,27 +172,13 @@ Residuals voltage_drop_prediction_residuals(const std::vector<VoltageDropSample>
   return residuals_of(predicted, averaged.drop_v);
 }
 
-ProcedureResult fit_voltage_drop(const std::vector<VoltageDropSample>& samples) {
-  ProcedureResult result;
-  result.procedure = "voltage-drop";
-  result.reference = "(4.5)";
-  result.quality["samples"] = static_cast<double>(samples.size());
-  if (samples.size() < kVoltageDropMinSamples) {
-    result.problems.push_back("too few cycles: " + std::to_string(samples.size()) +
-                              " with a measured supply voltage, at least " +
-                              std::to_string(kVoltageDropMinSamples) +
-                              " needed (record a longer drive)");
-    return result;
-  }
-  const Averaged averaged = averaged_over_window(samples, kVoltageDropAveraging_s);
-  const std::vector<double>& duty_sum = averaged.duty_sum;
-  const std::vector<double>& load_sum = averaged.load_sum;
-  const std::vector<double>& drop = averaged.drop_v;
-  std::vector<std::vector<double>> rows;
-  for (std::size_t k = 0; k < drop.size(); ++k) rows.push_back({duty_sum[k], load_sum[k]});
-  const double duty_spread = standard_deviation(duty_sum);
-  const double load_spread = standard_deviation(load_sum);
-  const double corr = correlation(duty_sum, load_sum);
+namespace {
+
+// The problems of a recording that does not excite both terms of (4.5) apart.
+void judge_excitation(const Averaged& averaged, ProcedureResult& result) {
+  const double duty_spread = standard_deviation(averaged.duty_sum);
+  const double load_spread = standard_deviation(averaged.load_sum);
+  const double corr = correlation(averaged.duty_sum, averaged.load_sum);
   result.quality["duty_sum_spread"] = duty_spread;
   result.quality["load_sum_spread_rad2_per_s2"] = load_spread;
   result.quality["regressor_correlation"] = corr;
@@ -213,15 +199,11 @@ ProcedureResult fit_voltage_drop(const std::vector<VoltageDropSample>& samples) 
                               ", at most " + number(kVoltageDropMaxCorrelation) +
                               "): ξ and Ξ cannot be told apart in this recording");
   }
-  if (!result.problems.empty()) return result;
+}
 
-  LeastSquaresFit fit;
-  try {
-    fit = fit_least_squares(rows, drop);
-  } catch (const std::invalid_argument& e) {
-    result.problems.push_back(std::string("the least-squares fit failed: ") + e.what());
-    return result;
-  }
+// ξ, Ξ into the values and the quality, with the problems of a fit that does not fit.
+void take_coefficients(const LeastSquaresFit& fit, const std::vector<double>& drop,
+                       ProcedureResult& result) {
   const double xi = fit.coefficients[0];
   const double big_xi = fit.coefficients[1];
   const double drop_mean = mean(drop);
@@ -229,7 +211,6 @@ ProcedureResult fit_voltage_drop(const std::vector<VoltageDropSample>& samples) 
   for (double d : drop) total += (d - drop_mean) * (d - drop_mean);
   const double ss_res = fit.residuals.rms * fit.residuals.rms * static_cast<double>(drop.size());
   const double r_squared = total > 0.0 ? 1.0 - ss_res / total : 0.0;
-
   toml::table power;
   power.insert_or_assign("duty_drop_v", xi);
   power.insert_or_assign("load_drop_v_s2_per_rad2", big_xi);
@@ -253,7 +234,11 @@ ProcedureResult fit_voltage_drop(const std::vector<VoltageDropSample>& samples) 
                               ", at least " + number(kVoltageDropMinRSquared) + " (rms residual " +
                               number(fit.residuals.rms) + " V)");
   }
+}
 
+// Figure 4.6: Ū, U and the drop, measured and by (4.5).
+Recording drop_recording(const std::vector<VoltageDropSample>& samples, const Averaged& averaged,
+                         double xi, double big_xi) {
   Recording recording;
   recording.name = "voltage-drop";
   recording.title = "Figure 4.6: U-bar and U-bar - U with (4.5), 1 s averages";
@@ -261,28 +246,70 @@ ProcedureResult fit_voltage_drop(const std::vector<VoltageDropSample>& samples) 
                        "predicted_drop_v", "sum_abs_duty",   "sum_load_sq_rad2_per_s2"};
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const VoltageDropSample& s = samples[k];
-    recording.rows.push_back({s.time_s, s.reference_supply_v, s.supply_v, drop[k],
-                              xi * duty_sum[k] + big_xi * load_sum[k], duty_sum[k], load_sum[k]});
+    recording.rows.push_back({s.time_s, s.reference_supply_v, s.supply_v, averaged.drop_v[k],
+                              xi * averaged.duty_sum[k] + big_xi * averaged.load_sum[k],
+                              averaged.duty_sum[k], averaged.load_sum[k]});
   }
   recording.gnuplot = kGnuplot;
-  result.recordings.push_back(std::move(recording));
+  return recording;
+}
+
+}  // namespace
+
+ProcedureResult fit_voltage_drop(const std::vector<VoltageDropSample>& samples) {
+  ProcedureResult result;
+  result.quality["samples"] = static_cast<double>(samples.size());
+  if (samples.size() < kVoltageDropMinSamples) {
+    result.problems.push_back("too few cycles: " + std::to_string(samples.size()) +
+                              " with a measured supply voltage, at least " +
+                              std::to_string(kVoltageDropMinSamples) +
+                              " needed (record a longer drive)");
+    return result;
+  }
+  const Averaged averaged = averaged_over_window(samples, kVoltageDropAveraging_s);
+  judge_excitation(averaged, result);
+  if (!result.problems.empty()) return result;
+  std::vector<std::vector<double>> rows;
+  for (std::size_t k = 0; k < averaged.drop_v.size(); ++k) {
+    rows.push_back({averaged.duty_sum[k], averaged.load_sum[k]});
+  }
+  LeastSquaresFit fit;
+  try {
+    fit = fit_least_squares(rows, averaged.drop_v);
+  } catch (const std::invalid_argument& e) {
+    result.problems.push_back(std::string("the least-squares fit failed: ") + e.what());
+    return result;
+  }
+  take_coefficients(fit, averaged.drop_v, result);
+  result.recordings.push_back(
+      drop_recording(samples, averaged, fit.coefficients[0], fit.coefficients[1]));
   return result;
 }
 
-ProcedureResult calibrate_voltage_drop(const Params& /*params*/, const ProcedureOptions& options) {
-  if (!options.from) {
-    ProcedureResult result;
-    result.procedure = "voltage-drop";
-    result.reference = "(4.5)";
-    result.problems.push_back(
-        "no recording: give --from DIR, the --out folder of `marsokhod scenario` (e.g. "
-        "power-management-off) or of `marsokhod run --record`");
+namespace {
+
+// (4.5) from a recorded drive: no bench, the command reads the recording's telemetry.csv.
+class VoltageDropProcedure final : public Procedure {
+ public:
+  ProcedureResult fit(const Run& run) const override {
+    if (!run.options.from) {
+      ProcedureResult result;
+      result.problems.push_back(
+          "no recording: give --from DIR, the --out folder of `marsokhod scenario` (e.g. "
+          "power-management-off) or of `marsokhod run --record`");
+      return result;
+    }
+    const std::filesystem::path csv = *run.options.from / "telemetry.csv";
+    ProcedureResult result = fit_voltage_drop(read_voltage_drop_samples(csv));
+    result.notes.push_back("fitted from " + csv.string());
     return result;
   }
-  const std::filesystem::path csv = *options.from / "telemetry.csv";
-  ProcedureResult result = fit_voltage_drop(read_voltage_drop_samples(csv));
-  result.notes.push_back("fitted from " + csv.string());
-  return result;
+};
+
+}  // namespace
+
+std::unique_ptr<Procedure> voltage_drop_procedure() {
+  return std::make_unique<VoltageDropProcedure>();
 }
 
 }  // namespace marsokhod::calibration

@@ -53,7 +53,7 @@ std::vector<AccelerometerPlacement> synthetic(const SensorParams& table, double 
 TEST(AccelerometerCalibration, RecoversTheSimulatorsTrueTable) {
   const Params params = config();
   SimBench bench(params, sim_bench_options(kSeed));
-  const ProcedureResult result = calibrate_accelerometer(bench, {});
+  const ProcedureResult result = run_procedure(bench, "accelerometer");
   ASSERT_TRUE(result.accepted()) << first(result.problems);
   const auto& truth = bench.rover().sim_truth().sensors.accelerometer;
   const Params fitted = config::apply_calibration_values(kConfigFile, result.values);

@@ -93,7 +93,7 @@ testing::TestUnit unit_off_nominal() {
 TEST(LoadSim, RecoversTheTrueDroopOfTheFrontLeftMotor) {
   const testing::TestUnit unit = unit_off_nominal();
   const sim::MotorTruth& motor = unit.truth.motors[kFrontLeft];
-  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_load, 90.0);
+  const ProcedureResult result = testing::calibrate_unit(unit, "load", 90.0);
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   const Params fitted = testing::apply_values(unit, result.values);
   // At d ≥ 0.3 and icr = 511 the simulator's B is its base value (sim_truth.hpp).

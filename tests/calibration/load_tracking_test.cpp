@@ -64,7 +64,7 @@ TEST(LoadTracking, TheCalibratedDriverTracksAnUnloadedRunBetterThanTheNominalOne
   toml::table values;
   ASSERT_NO_FATAL_FAILURE(testing::calibrate_in_turn(
       unit,
-      {{calibrate_motor_curve, 60.0}, {calibrate_motor_scale, 30.0}, {calibrate_response, 60.0}},
+      {{"motor-curve", 60.0}, {"motor-scale", 30.0}, {"response", 60.0}},
       values));
   const Params calibrated = testing::apply_values(unit, values);
   const Params& nominal = unit.params;

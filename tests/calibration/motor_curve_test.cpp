@@ -112,7 +112,7 @@ TEST(MotorCurveFit, TabulatesADeadZoneWiderThanTheFirstStep) {
 // Against the simulator: W is the mean of the wheels' true no-load speeds at 24 V.
 TEST(MotorCurveSim, RecoversTheUnitsMeanCurveWhereTheNominalTableIsOff) {
   const testing::TestUnit unit = testing::drawn_unit(7);
-  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_motor_curve, 60.0);
+  const ProcedureResult result = testing::calibrate_unit(unit, "motor-curve", 60.0);
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   EXPECT_EQ(result.procedure, "motor-curve");
 
@@ -138,7 +138,7 @@ TEST(MotorCurveSim, RecoversTheUnitsMeanCurveWhereTheNominalTableIsOff) {
 
 TEST(MotorCurveSim, RefusesASweepOfAFewSeconds) {
   const testing::TestUnit unit = testing::drawn_unit(7);
-  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_motor_curve, 4.0);
+  const ProcedureResult result = testing::calibrate_unit(unit, "motor-curve", 4.0);
   EXPECT_FALSE(result.accepted());
 }
 

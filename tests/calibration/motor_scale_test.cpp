@@ -65,7 +65,7 @@ TEST(MotorScaleFit, RefusesNoisyData) {
 // With the nominal W: ζ_i = the wheel's true speed at 0.7 over the table's W(0.7).
 TEST(MotorScaleSim, RecoversTheTrueScalesRelativeToTheConfiguredCurve) {
   const testing::TestUnit unit = testing::drawn_unit(11);
-  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_motor_scale, 30.0);
+  const ProcedureResult result = testing::calibrate_unit(unit, "motor-scale", 30.0);
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   const Params fitted = testing::apply_values(unit, result.values);
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(unit.params.motor_curves, 511));
@@ -92,7 +92,7 @@ TEST(MotorScaleSim, RefusesAWheelWithALooseEncoder) {
   bench.rover().set_faults(faults);
   ProcedureOptions options;
   options.duration_s = 30.0;
-  const ProcedureResult result = calibrate_motor_scale(bench, options);
+  const ProcedureResult result = run_procedure(bench, "motor-scale", options);
   ASSERT_FALSE(result.accepted());
   EXPECT_TRUE(mentions(result.problems, "CL")) << result.problems.front();
   EXPECT_TRUE(mentions(result.problems, "too noisy")) << result.problems.front();
@@ -103,7 +103,7 @@ TEST(MotorScaleSim, AfterMotorCurveTheProductIsEachWheelsTrueSpeed) {
   const testing::TestUnit unit = testing::drawn_unit(12);
   toml::table values;
   ASSERT_NO_FATAL_FAILURE(testing::calibrate_in_turn(
-      unit, {{calibrate_motor_curve, 60.0}, {calibrate_motor_scale, 30.0}}, values));
+      unit, {{"motor-curve", 60.0}, {"motor-scale", 30.0}}, values));
   const Params fitted = testing::apply_values(unit, values);
   const adaptation::MotorCurve curve(adaptation::select_motor_curve(fitted.motor_curves, 511));
   const adaptation::MotorCurve nominal(

@@ -74,26 +74,24 @@ inline Params apply_values(const TestUnit& unit, const toml::table& values) {
   return params;
 }
 
-using Calibrate = ProcedureResult (*)(Bench&, const ProcedureOptions&);
-
-// One procedure with --duration on the unit's laboratory bench, the driver configured by
-// `params` (by unit.params when not given).
+// The procedure of that name with --duration on the unit's laboratory bench, the driver
+// configured by `params` (by unit.params when not given).
 inline ProcedureResult calibrate_unit(const TestUnit& unit, const Params& params,
-                                      Calibrate calibrate, double duration_s) {
+                                      const std::string& procedure, double duration_s) {
   SimBench bench(params, unit_options(unit));
   ProcedureOptions options;
   options.duration_s = duration_s;
-  return calibrate(bench, options);
+  return run_procedure(bench, procedure, options);
 }
 
-inline ProcedureResult calibrate_unit(const TestUnit& unit, Calibrate calibrate,
+inline ProcedureResult calibrate_unit(const TestUnit& unit, const std::string& procedure,
                                       double duration_s) {
-  return calibrate_unit(unit, unit.params, calibrate, duration_s);
+  return calibrate_unit(unit, unit.params, procedure, duration_s);
 }
 
 // One procedure of a chain and how long it runs (--duration).
 struct ChainStep {
-  Calibrate calibrate;
+  std::string procedure;
   double duration_s = 0.0;
 };
 
@@ -104,7 +102,7 @@ inline void calibrate_in_turn(const TestUnit& unit, const std::vector<ChainStep>
                               toml::table& values) {
   for (const ChainStep& step : steps) {
     const Params params = values.empty() ? unit.params : apply_values(unit, values);
-    const ProcedureResult result = calibrate_unit(unit, params, step.calibrate, step.duration_s);
+    const ProcedureResult result = calibrate_unit(unit, params, step.procedure, step.duration_s);
     ASSERT_TRUE(result.accepted()) << result.procedure << ": " << result.problems.front();
     merge_values(values, result.values);
   }

@@ -135,7 +135,7 @@ std::vector<double> chain_delta(const sim::MotorTruth& motor, double seconds) {
 
 TEST(ResponseSim, RecoversTheChainOfTheSimulatedStandWhereTheThesisTableIsOff) {
   const testing::TestUnit unit = testing::drawn_unit(31);
-  const ProcedureResult result = testing::calibrate_unit(unit, calibrate_response, 60.0);
+  const ProcedureResult result = testing::calibrate_unit(unit, "response", 60.0);
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   const toml::array& responses = *result.values["response"].as_array();
   ASSERT_EQ(responses.size(), 1u);
@@ -165,14 +165,14 @@ TEST(ResponseSim, PredictsAHeldOutChirpBetterThanTheNominalTable) {
   SimBench bench(unit.params, testing::unit_options(unit));
   ProcedureOptions procedure;
   procedure.duration_s = 60.0;
-  const ProcedureResult result = calibrate_response(bench, procedure);
+  const ProcedureResult result = run_procedure(bench, "response", procedure);
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   std::vector<double> fitted;
   for (const auto& d : *result.values["response"][0]["delta"].as_array()) {
     fitted.push_back(*d.value<double>());
   }
   procedure.duration_s = 40.0;  // a different chirp: the held-out data
-  const ProcedureResult held_out = calibrate_response(bench, procedure);
+  const ProcedureResult held_out = run_procedure(bench, "response", procedure);
   const Recording& chirp = held_out.recordings.at(1);
   ASSERT_EQ(chirp.columns[1], "w_hat_radps");
   ASSERT_EQ(chirp.columns[2], "w_radps");

@@ -58,7 +58,7 @@ sim::SimOptions battery(std::uint64_t seed) {
 TEST(SpinCalibration, SweepsTheAxleDistancesAndTheTurningRateFallsWithC) {
   const Params params = config();
   SimBench bench(params, battery(6));
-  const ProcedureResult result = calibrate_spin(bench, {});
+  const ProcedureResult result = run_procedure(bench, "spin");
   ASSERT_GE(result.recordings.size(), 2u);
   const Recording& points = result.recordings[0];
   ASSERT_EQ(points.rows.size(), spin_clearances_m().size());

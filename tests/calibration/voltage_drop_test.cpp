@@ -29,6 +29,11 @@ using namespace testing;
 
 constexpr double kHeldOutRmsV = 0.35;
 
+// The voltage-drop procedure (no bench) on the configuration.
+ProcedureResult from_recording(const ProcedureOptions& options) {
+  return run_procedure(nullptr, *find_procedure("voltage-drop"), config(), options);
+}
+
 // Records a scenario into a fresh temporary folder and returns the folder.
 std::filesystem::path record(const std::string& name) {
   const std::filesystem::path out =
@@ -77,7 +82,7 @@ TEST(VoltageDropCalibration, PredictsTheDropOfADriveItWasNotFittedTo) {
   const std::filesystem::path held_out = record("straight-and-spin");
   ProcedureOptions options;
   options.from = fitted_on;
-  const ProcedureResult result = calibrate_voltage_drop(config(), options);
+  const ProcedureResult result = from_recording(options);
   ASSERT_TRUE(result.accepted()) << first(result.problems);
   const Params fitted = config::apply_calibration_values(kConfigFile, result.values);
   const double xi = fitted.power.duty_drop_v;
@@ -97,7 +102,7 @@ TEST(VoltageDropCalibration, PredictsTheDropOfADriveItWasNotFittedTo) {
   EXPECT_LT(with_fit.rms, 0.6 * with_nominal.rms);
 
   // Deterministic: the same recording gives the same coefficients.
-  const ProcedureResult again = calibrate_voltage_drop(config(), options);
+  const ProcedureResult again = from_recording(options);
   EXPECT_EQ(again.quality.at("duty_drop_v"), result.quality.at("duty_drop_v"));
   EXPECT_EQ(again.quality.at("load_drop_v_s2_per_rad2"),
             result.quality.at("load_drop_v_s2_per_rad2"));
@@ -154,11 +159,11 @@ TEST(VoltageDropCalibration, RefusesANegativeCoefficient) {
 }
 
 TEST(VoltageDropCalibration, NeedsARecording) {
-  const ProcedureResult result = calibrate_voltage_drop(config(), {});
+  const ProcedureResult result = from_recording(ProcedureOptions{});
   EXPECT_TRUE(mentions(result.problems, "--from")) << first(result.problems);
   ProcedureOptions options;
   options.from = "/nonexistent/folder";
-  EXPECT_THROW(calibrate_voltage_drop(config(), options), std::runtime_error);
+  EXPECT_THROW(from_recording(options), std::runtime_error);
 }
 
 }  // namespace

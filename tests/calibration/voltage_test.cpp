@@ -17,7 +17,7 @@ using namespace testing;
 TEST(VoltageProcedure, RecoversTheUnitsSupplyConversion) {
   const Params params = config();
   SimBench bench(params, sim_bench_options(11));
-  const ProcedureResult result = calibrate_voltage(bench, {});
+  const ProcedureResult result = run_procedure(bench, "voltage");
   ASSERT_TRUE(result.accepted()) << result.problems.front();
   const LinearConversion truth = bench.rover().sim_truth().sensors.supply;
   const Params fitted = config::apply_calibration_values(kConfigFile, result.values);

@@ -1,6 +1,11 @@
-// Test helpers for the layers that reject bad input with std::invalid_argument.
+// Test helpers for the code that rejects bad input with std::invalid_argument.
 #pragma once
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -19,6 +24,19 @@ std::string invalid_argument_message(Call&& call) {
     return error.what();
   }
   return "<no std::invalid_argument thrown>";
+}
+
+// Expects fn to throw std::invalid_argument whose message contains every fragment.
+inline void expect_invalid_argument(const std::function<void()>& fn,
+                                    std::initializer_list<std::string> fragments) {
+  try {
+    fn();
+    ADD_FAILURE() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    for (const std::string& fragment : fragments) {
+      EXPECT_THAT(error.what(), ::testing::HasSubstr(fragment));
+    }
+  }
 }
 
 }  // namespace marsokhod::test_support

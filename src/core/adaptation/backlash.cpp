@@ -3,16 +3,16 @@
 #include <algorithm>
 #include <utility>
 
-#include "core/adaptation/checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::adaptation {
 namespace {
 
 void check_arguments(const char* function, double motor_position_rad, double joint_position_rad,
                      double backlash_rad) {
-  detail::require_finite(motor_position_rad, function, "motor_position_rad");
-  detail::require_finite(joint_position_rad, function, "joint_position_rad");
-  detail::require_non_negative(backlash_rad, function, "backlash_rad");
+  checks::require_finite(motor_position_rad, function, "motor_position_rad");
+  checks::require_finite(joint_position_rad, function, "joint_position_rad");
+  checks::require_non_negative(backlash_rad, function, "backlash_rad");
 }
 
 // P⁺ without the checks; the callers have made them.
@@ -71,19 +71,19 @@ double backlash_factor_negative(double motor_position_rad, double joint_position
 double backlash_velocity(double motor_position_rad, double motor_velocity_radps,
                          double joint_position_rad, double backlash_rad) {
   check_arguments("backlash_velocity", motor_position_rad, joint_position_rad, backlash_rad);
-  detail::require_finite(motor_velocity_radps, "backlash_velocity", "motor_velocity_radps");
+  checks::require_finite(motor_velocity_radps, "backlash_velocity", "motor_velocity_radps");
   return velocity(motor_position_rad, motor_velocity_radps, joint_position_rad, backlash_rad);
 }
 
 BacklashTracker::BacklashTracker(double backlash_rad, double initial_position_rad)
     : backlash_rad_(backlash_rad), joint_position_rad_(initial_position_rad) {
-  detail::require_non_negative(backlash_rad, "BacklashTracker", "backlash_rad");
-  detail::require_finite(initial_position_rad, "BacklashTracker", "initial_position_rad");
+  checks::require_non_negative(backlash_rad, "BacklashTracker", "backlash_rad");
+  checks::require_finite(initial_position_rad, "BacklashTracker", "initial_position_rad");
 }
 
 void BacklashTracker::update(double motor_position_rad, double motor_velocity_radps) {
-  detail::require_finite(motor_position_rad, "BacklashTracker::update", "motor_position_rad");
-  detail::require_finite(motor_velocity_radps, "BacklashTracker::update", "motor_velocity_radps");
+  checks::require_finite(motor_position_rad, "BacklashTracker::update", "motor_position_rad");
+  checks::require_finite(motor_velocity_radps, "BacklashTracker::update", "motor_velocity_radps");
   // (4.2) reads p^k, so the velocity goes first.
   joint_velocity_radps_ =
       velocity(motor_position_rad, motor_velocity_radps, joint_position_rad_, backlash_rad_);
@@ -91,7 +91,7 @@ void BacklashTracker::update(double motor_position_rad, double motor_velocity_ra
 }
 
 void BacklashTracker::reset(double position_rad) {
-  detail::require_finite(position_rad, "BacklashTracker::reset", "position_rad");
+  checks::require_finite(position_rad, "BacklashTracker::reset", "position_rad");
   joint_position_rad_ = position_rad;
   joint_velocity_radps_ = 0.0;
 }
@@ -109,17 +109,17 @@ std::array<BacklashTracker, kMotorCount> make_trackers(const MotorVector& backla
 std::array<BacklashTracker, kMotorCount> make_trackers(const MotorVector& backlash_rad,
                                                        const MotorVector& initial_position_rad) {
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    detail::require_non_negative(backlash_rad[i], "RoverBacklashTracker",
-                                 detail::argument_name("backlash_rad", i));
-    detail::require_finite(initial_position_rad[i], "RoverBacklashTracker",
-                           detail::argument_name("initial_position_rad", i));
+    checks::require_non_negative(backlash_rad[i], "RoverBacklashTracker",
+                                 checks::argument_name("backlash_rad", i));
+    checks::require_finite(initial_position_rad[i], "RoverBacklashTracker",
+                           checks::argument_name("initial_position_rad", i));
   }
   return make_trackers(backlash_rad, initial_position_rad, std::make_index_sequence<kMotorCount>{});
 }
 
 void check_all_finite(const MotorVector& values, const char* function, const char* argument) {
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    detail::require_finite(values[i], function, detail::argument_name(argument, i));
+    checks::require_finite(values[i], function, checks::argument_name(argument, i));
   }
 }
 

@@ -1,15 +1,15 @@
 #include "core/adaptation/load_torque.hpp"
 
-#include "core/adaptation/checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::adaptation {
 namespace {
 
 void check_gains(const char* function, double duty, const LoadParams& load) {
-  detail::require_duty(duty, function, "duty");
-  detail::require_positive(load.gain_same_sign_radps_per_nm, function,
+  checks::require_duty(duty, function, "duty");
+  checks::require_positive(load.gain_same_sign_radps_per_nm, function,
                            "load.gain_same_sign_radps_per_nm");
-  detail::require_positive(load.gain_opposite_sign_radps_per_nm, function,
+  checks::require_positive(load.gain_opposite_sign_radps_per_nm, function,
                            "load.gain_opposite_sign_radps_per_nm");
 }
 
@@ -23,18 +23,18 @@ double gain_radps_per_nm(double signed_value, double duty, const LoadParams& loa
 }  // namespace
 
 double load_from_torque(double torque_nm, double duty, const LoadParams& load) {
-  detail::require_finite(torque_nm, "load_from_torque", "torque_nm");
+  checks::require_finite(torque_nm, "load_from_torque", "torque_nm");
   check_gains("load_from_torque", duty, load);
   const double load_radps = torque_nm * gain_radps_per_nm(torque_nm, duty, load);
-  detail::require_finite_result(load_radps, "load_from_torque", "load_radps");
+  checks::require_finite_result(load_radps, "load_from_torque", "load_radps");
   return load_radps;
 }
 
 double torque_from_load(double load_radps, double duty, const LoadParams& load) {
-  detail::require_finite(load_radps, "torque_from_load", "load_radps");
+  checks::require_finite(load_radps, "torque_from_load", "load_radps");
   check_gains("torque_from_load", duty, load);
   const double torque_nm = load_radps / gain_radps_per_nm(load_radps, duty, load);
-  detail::require_finite_result(torque_nm, "torque_from_load", "torque_nm");
+  checks::require_finite_result(torque_nm, "torque_from_load", "torque_nm");
   return torque_nm;
 }
 

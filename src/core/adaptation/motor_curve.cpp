@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/adaptation/checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::adaptation {
 namespace {
@@ -17,7 +17,7 @@ namespace {
 }
 
 std::string entry(const char* field, std::size_t index, double value) {
-  return detail::argument_name(field, index) + " = " + detail::format_number(value);
+  return checks::argument_name(field, index) + " = " + checks::format_number(value);
 }
 
 // 0 = values[0] < values[1] < … (and values.back() = 1 when must_end_at_one); all finite.
@@ -86,12 +86,12 @@ MotorCurve::MotorCurve(const MotorCurveParams& params)
 }
 
 double MotorCurve::velocity_radps(double duty) const {
-  detail::require_finite(duty, "MotorCurve::velocity_radps", "duty");
+  checks::require_finite(duty, "MotorCurve::velocity_radps", "duty");
   return odd_interpolate(duty_, velocity_radps_, duty);
 }
 
 double MotorCurve::duty(double velocity_radps) const {
-  detail::require_finite(velocity_radps, "MotorCurve::duty", "velocity_radps");
+  checks::require_finite(velocity_radps, "MotorCurve::duty", "velocity_radps");
   return odd_interpolate(velocity_radps_, duty_, velocity_radps);
 }
 

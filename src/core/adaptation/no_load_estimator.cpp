@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/adaptation/checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::adaptation {
 namespace {
@@ -15,7 +15,7 @@ constexpr double kPeriodRounding_s = 1e-12;
 std::string describe_pairs(const std::vector<ResponseParams>& responses) {
   std::string pairs;
   for (const ResponseParams& response : responses) {
-    pairs += (pairs.empty() ? "(" : ", (") + detail::format_number(response.period_s) + " s, " +
+    pairs += (pairs.empty() ? "(" : ", (") + checks::format_number(response.period_s) + " s, " +
              std::to_string(response.con) + ")";
   }
   return pairs.empty() ? "none" : pairs;
@@ -23,7 +23,7 @@ std::string describe_pairs(const std::vector<ResponseParams>& responses) {
 
 void check_all_finite(const MotorVector& values, const char* function, const char* argument) {
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    detail::require_finite(values[i], function, detail::argument_name(argument, i));
+    checks::require_finite(values[i], function, checks::argument_name(argument, i));
   }
 }
 
@@ -31,7 +31,7 @@ void check_all_finite(const MotorVector& values, const char* function, const cha
 
 const ResponseParams& select_response(const std::vector<ResponseParams>& responses, double period_s,
                                       int con) {
-  detail::require_positive(period_s, "select_response", "period_s");
+  checks::require_positive(period_s, "select_response", "period_s");
   const ResponseParams* best = nullptr;
   for (const ResponseParams& response : responses) {
     const double distance_s = std::abs(period_s - response.period_s);
@@ -42,9 +42,9 @@ const ResponseParams& select_response(const std::vector<ResponseParams>& respons
   }
   if (best == nullptr) {
     throw std::invalid_argument(
-        "no δ table (responses) for h = " + detail::format_number(period_s) +
+        "no δ table (responses) for h = " + checks::format_number(period_s) +
         " s, con = " + std::to_string(con) + ": a table needs the same con and h within " +
-        detail::format_number(kResponsePeriodTolerance_s) +
+        checks::format_number(kResponsePeriodTolerance_s) +
         " s; available (h, con): " + describe_pairs(responses) +
         "; set cycle.period_s and cycle.con to one of them, or run Procedure 4.8 and add a row");
   }
@@ -56,12 +56,12 @@ NoLoadEstimator::NoLoadEstimator(const ResponseParams& response,
     : delta_(response.delta) {
   if (delta_.empty()) {
     throw std::invalid_argument(
-        "NoLoadEstimator: the δ table for h = " + detail::format_number(response.period_s) +
+        "NoLoadEstimator: the δ table for h = " + checks::format_number(response.period_s) +
         " s, con = " + std::to_string(response.con) +
         " is empty; give at least δ⁰ (Procedure 4.8)");
   }
   for (std::size_t j = 0; j < delta_.size(); ++j) {
-    detail::require_finite(delta_[j], "NoLoadEstimator", detail::argument_name("delta", j));
+    checks::require_finite(delta_[j], "NoLoadEstimator", checks::argument_name("delta", j));
   }
   check_all_finite(initial_w_hat_radps, "NoLoadEstimator", "initial_w_hat_radps");
   history_.assign(delta_.size() - 1, initial_w_hat_radps);
@@ -85,21 +85,21 @@ MotorVector NoLoadEstimator::no_load_velocity_radps(const MotorVector& w_hat_rad
   MotorVector nu = history_sum_radps();
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     nu[i] += delta_[0] * w_hat_radps[i];
-    detail::require_finite_result(nu[i], "NoLoadEstimator::no_load_velocity_radps",
-                                  detail::argument_name("nu", i));
+    checks::require_finite_result(nu[i], "NoLoadEstimator::no_load_velocity_radps",
+                                  checks::argument_name("nu", i));
   }
   return nu;
 }
 
 MotorVector NoLoadEstimator::no_load_velocity_radps() const {
   if (delta_[0] != 0.0) {
-    throw std::logic_error("NoLoadEstimator: δ⁰ = " + detail::format_number(delta_[0]) +
+    throw std::logic_error("NoLoadEstimator: δ⁰ = " + checks::format_number(delta_[0]) +
                            " weighs this cycle's command; call no_load_velocity_radps(w_hat)");
   }
   const MotorVector nu = history_sum_radps();
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    detail::require_finite_result(nu[i], "NoLoadEstimator::no_load_velocity_radps",
-                                  detail::argument_name("nu", i));
+    checks::require_finite_result(nu[i], "NoLoadEstimator::no_load_velocity_radps",
+                                  checks::argument_name("nu", i));
   }
   return nu;
 }
@@ -114,10 +114,10 @@ void NoLoadEstimator::push(const MotorVector& w_hat_radps) {
 }
 
 double load(double measured_velocity_radps, double no_load_velocity_radps) {
-  detail::require_finite(measured_velocity_radps, "load", "measured_velocity_radps");
-  detail::require_finite(no_load_velocity_radps, "load", "no_load_velocity_radps");
+  checks::require_finite(measured_velocity_radps, "load", "measured_velocity_radps");
+  checks::require_finite(no_load_velocity_radps, "load", "no_load_velocity_radps");
   const double load_radps = measured_velocity_radps - no_load_velocity_radps;
-  detail::require_finite_result(load_radps, "load", "w - nu");
+  checks::require_finite_result(load_radps, "load", "w - nu");
   return load_radps;
 }
 
@@ -125,10 +125,10 @@ MotorVector load(const MotorVector& measured_velocity_radps,
                  const MotorVector& no_load_velocity_radps) {
   MotorVector result{};
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    detail::require_finite(measured_velocity_radps[i], "load",
-                           detail::argument_name("measured_velocity_radps", i));
-    detail::require_finite(no_load_velocity_radps[i], "load",
-                           detail::argument_name("no_load_velocity_radps", i));
+    checks::require_finite(measured_velocity_radps[i], "load",
+                           checks::argument_name("measured_velocity_radps", i));
+    checks::require_finite(no_load_velocity_radps[i], "load",
+                           checks::argument_name("no_load_velocity_radps", i));
   }
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     result[i] = load(measured_velocity_radps[i], no_load_velocity_radps[i]);

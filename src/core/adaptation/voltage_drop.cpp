@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/adaptation/checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::adaptation {
 
@@ -16,21 +16,21 @@ double voltage_drop_v(std::span<const double> duties, std::span<const double> lo
                                 " duties but " + std::to_string(loads_radps.size()) +
                                 " loads; pass one of each per motor");
   }
-  detail::require_non_negative(power.duty_drop_v, "voltage_drop_v", "power.duty_drop_v");
-  detail::require_non_negative(power.load_drop_v_s2_per_rad2, "voltage_drop_v",
+  checks::require_non_negative(power.duty_drop_v, "voltage_drop_v", "power.duty_drop_v");
+  checks::require_non_negative(power.load_drop_v_s2_per_rad2, "voltage_drop_v",
                                "power.load_drop_v_s2_per_rad2");
   double duty_sum = 0.0;
   double load_square_sum_rad2_per_s2 = 0.0;
   for (std::size_t i = 0; i < duties.size(); ++i) {
-    detail::require_duty(duties[i], "voltage_drop_v", detail::argument_name("duties", i));
-    detail::require_finite(loads_radps[i], "voltage_drop_v",
-                           detail::argument_name("loads_radps", i));
+    checks::require_duty(duties[i], "voltage_drop_v", checks::argument_name("duties", i));
+    checks::require_finite(loads_radps[i], "voltage_drop_v",
+                           checks::argument_name("loads_radps", i));
     duty_sum += std::abs(duties[i]);
     load_square_sum_rad2_per_s2 += loads_radps[i] * loads_radps[i];
   }
   const double drop_v =
       power.duty_drop_v * duty_sum + power.load_drop_v_s2_per_rad2 * load_square_sum_rad2_per_s2;
-  detail::require_finite_result(drop_v, "voltage_drop_v", "drop_v");
+  checks::require_finite_result(drop_v, "voltage_drop_v", "drop_v");
   return drop_v;
 }
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/behaviour/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::behaviour {
 namespace {
@@ -13,16 +13,16 @@ constexpr const char* kFunction = "next_axle_placement";
 void require_inputs(const AxlePlacementState& state, double requested_placement,
                     double joint_load_radps, double joint_velocity_radps, double period_s,
                     const BehaviourParams& params) {
-  detail::require_within(state.switch_fraction, 0.0, 1.0, kFunction, "state.switch_fraction");
-  detail::require_within(requested_placement, 0.0, 1.0, kFunction, "requested_placement");
-  detail::require_finite(joint_load_radps, kFunction, "joint_load_radps");
-  detail::require_finite(joint_velocity_radps, kFunction, "joint_velocity_radps");
-  detail::require_positive(period_s, kFunction, "period_s");
-  detail::require_positive(params.axle_placement_load_radps, kFunction,
+  checks::require_within(state.switch_fraction, 0.0, 1.0, kFunction, "state.switch_fraction");
+  checks::require_within(requested_placement, 0.0, 1.0, kFunction, "requested_placement");
+  checks::require_finite_estimate(joint_load_radps, kFunction, "joint_load_radps");
+  checks::require_finite_estimate(joint_velocity_radps, kFunction, "joint_velocity_radps");
+  checks::require_positive(period_s, kFunction, "period_s");
+  checks::require_positive(params.axle_placement_load_radps, kFunction,
                            "params.axle_placement_load_radps");
-  detail::require_positive(params.axle_placement_speed_radps, kFunction,
+  checks::require_positive(params.axle_placement_speed_radps, kFunction,
                            "params.axle_placement_speed_radps");
-  detail::require_positive(params.axle_placement_rate_per_s, kFunction,
+  checks::require_positive(params.axle_placement_rate_per_s, kFunction,
                            "params.axle_placement_rate_per_s");
 }
 

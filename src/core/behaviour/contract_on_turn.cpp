@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/behaviour/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::behaviour {
 
@@ -13,12 +13,12 @@ JointVelocityTargets contract_joints_when_turning(const JointVelocityTargets& ta
                                                   double max_abs_n7,
                                                   const BehaviourSwitches& switches) {
   constexpr const char* kFunction = "contract_joints_when_turning";
-  detail::require_finite(targets.front_radps, kFunction, "targets.front_radps");
-  detail::require_finite(targets.rear_radps, kFunction, "targets.rear_radps");
-  detail::require_finite(spin_target_radps, kFunction, "spin_target_radps");
-  detail::require_positive(max_no_load_speed_radps, kFunction, "max_no_load_speed_radps");
-  detail::require_positive(max_abs_n6, kFunction, "max_abs_n6");
-  detail::require_positive(max_abs_n7, kFunction, "max_abs_n7");
+  checks::require_finite_estimate(targets.front_radps, kFunction, "targets.front_radps");
+  checks::require_finite_estimate(targets.rear_radps, kFunction, "targets.rear_radps");
+  checks::require_finite_estimate(spin_target_radps, kFunction, "spin_target_radps");
+  checks::require_positive(max_no_load_speed_radps, kFunction, "max_no_load_speed_radps");
+  checks::require_positive(max_abs_n6, kFunction, "max_abs_n6");
+  checks::require_positive(max_abs_n7, kFunction, "max_abs_n7");
   if (!switches.contract_on_turn) {
     return targets;
   }

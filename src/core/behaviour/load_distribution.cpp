@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/behaviour/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::behaviour {
 namespace {
@@ -14,11 +14,12 @@ namespace {
 void require_inputs(const MotorVector& loads_radps, double drive_speed_radps,
                     const LoadDistributionParams& params, const char* function) {
   for (std::size_t i = 0; i < kWheelCount; ++i) {
-    detail::require_finite(loads_radps[i], function, detail::argument_name("loads_radps", i));
+    checks::require_finite_estimate(loads_radps[i], function,
+                                    checks::argument_name("loads_radps", i));
   }
-  detail::require_finite(drive_speed_radps, function, "drive_speed_radps");
-  detail::require_non_negative(params.gain_per_radps, function, "params.gain_per_radps");
-  detail::require_positive(params.max_correction_radps, function, "params.max_correction_radps");
+  checks::require_finite_estimate(drive_speed_radps, function, "drive_speed_radps");
+  checks::require_non_negative(params.gain_per_radps, function, "params.gain_per_radps");
+  checks::require_positive(params.max_correction_radps, function, "params.max_correction_radps");
 }
 
 double mean_wheel_load_radps(const MotorVector& loads_radps) {

@@ -4,16 +4,16 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/behaviour/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::behaviour {
 namespace {
 
 void require_power_params(const PowerParams& power, const char* function) {
-  detail::require_positive(power.duty_drop_v, function, "power.duty_drop_v");
-  detail::require_non_negative(power.load_drop_v_s2_per_rad2, function,
+  checks::require_positive(power.duty_drop_v, function, "power.duty_drop_v");
+  checks::require_non_negative(power.load_drop_v_s2_per_rad2, function,
                                "power.load_drop_v_s2_per_rad2");
-  detail::require_non_negative(power.max_drop_v, function, "power.max_drop_v");
+  checks::require_non_negative(power.max_drop_v, function, "power.max_drop_v");
 }
 
 }  // namespace
@@ -22,7 +22,7 @@ double equal_duty_bound(double load_square_sum_rad2_per_s2, std::size_t motor_co
                         const PowerParams& power) {
   constexpr const char* kFunction = "equal_duty_bound";
   require_power_params(power, kFunction);
-  detail::require_non_negative(load_square_sum_rad2_per_s2, kFunction,
+  checks::require_non_negative(load_square_sum_rad2_per_s2, kFunction,
                                "load_square_sum_rad2_per_s2");
   if (motor_count == 0) {
     throw std::invalid_argument(
@@ -38,13 +38,14 @@ double next_duty_bound(const MotorVector& duties, const MotorVector& loads_radps
                        double unmodelled_drop_v) {
   constexpr const char* kFunction = "next_duty_bound";
   require_power_params(power, kFunction);
-  detail::require_non_negative(unmodelled_drop_v, kFunction, "unmodelled_drop_v");
+  checks::require_non_negative(unmodelled_drop_v, kFunction, "unmodelled_drop_v");
   double largest_duty = 0.0;
   double duty_sum = 0.0;
   double load_square_sum_rad2_per_s2 = 0.0;
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    detail::require_within(duties[i], -1.0, 1.0, kFunction, detail::argument_name("duties", i));
-    detail::require_finite(loads_radps[i], kFunction, detail::argument_name("loads_radps", i));
+    checks::require_within(duties[i], -1.0, 1.0, kFunction, checks::argument_name("duties", i));
+    checks::require_finite_estimate(loads_radps[i], kFunction,
+                                    checks::argument_name("loads_radps", i));
     largest_duty = std::max(largest_duty, std::abs(duties[i]));
     duty_sum += std::abs(duties[i]);
     load_square_sum_rad2_per_s2 += loads_radps[i] * loads_radps[i];
@@ -65,9 +66,9 @@ double next_duty_bound(const MotorVector& duties, const MotorVector& loads_radps
 double MeasuredDropExcess::update(double measured_drop_v, double modelled_drop_v,
                                   double period_s) {
   constexpr const char* kFunction = "MeasuredDropExcess::update";
-  detail::require_finite(measured_drop_v, kFunction, "measured_drop_v");
-  detail::require_finite(modelled_drop_v, kFunction, "modelled_drop_v");
-  detail::require_positive(period_s, kFunction, "period_s");
+  checks::require_finite(measured_drop_v, kFunction, "measured_drop_v");
+  checks::require_finite(modelled_drop_v, kFunction, "modelled_drop_v");
+  checks::require_positive(period_s, kFunction, "period_s");
   const double excess_v = std::max(0.0, measured_drop_v - modelled_drop_v);
   const double released_v = excess_v_ * std::exp(-period_s / kDropExcessReleaseS);
   excess_v_ = std::max(excess_v, released_v);

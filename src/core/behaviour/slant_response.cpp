@@ -5,15 +5,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/behaviour/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::behaviour {
 namespace {
 
 void require_interval(double lowest, double highest, const char* function, const char* lowest_name,
                       const char* highest_name) {
-  detail::require_finite(lowest, function, lowest_name);
-  detail::require_finite(highest, function, highest_name);
+  checks::require_finite_estimate(lowest, function, lowest_name);
+  checks::require_finite_estimate(highest, function, highest_name);
   if (lowest > highest) {
     throw std::invalid_argument(std::string(function) + ": " + lowest_name + " exceeds " +
                                 highest_name + "; the bounds (5.3) must satisfy min ≤ max");
@@ -34,11 +34,11 @@ JointBounds joint_bounds_of(const JointParams& joints) {
 
 double gravity_parallel_joint_angle_rad(double slope_rad, const GeometryParams& geometry) {
   constexpr const char* kFunction = "gravity_parallel_joint_angle_rad";
-  detail::require_finite(slope_rad, kFunction, "slope_rad");
+  checks::require_finite_estimate(slope_rad, kFunction, "slope_rad");
   const double a = geometry.joint_to_exterior_axle_m;
   const double b = geometry.center_axle_to_joint_m;
-  detail::require_positive(a, kFunction, "geometry.joint_to_exterior_axle_m");
-  detail::require_positive(b, kFunction, "geometry.center_axle_to_joint_m");
+  checks::require_positive(a, kFunction, "geometry.joint_to_exterior_axle_m");
+  checks::require_positive(b, kFunction, "geometry.center_axle_to_joint_m");
   if (!(a < b)) {
     throw std::invalid_argument(
         "gravity_parallel_joint_angle_rad: geometry.joint_to_exterior_axle_m (a) must be "

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "core/behaviour/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::behaviour {
 namespace {
@@ -15,21 +15,21 @@ double norm(const Vector3& vector) { return std::hypot(vector[0], vector[1], vec
 
 void require_finite_vector(const Vector3& vector, const char* function, const char* argument) {
   for (std::size_t i = 0; i < vector.size(); ++i) {
-    detail::require_finite(vector[i], function, detail::argument_name(argument, i));
+    checks::require_finite_estimate(vector[i], function, checks::argument_name(argument, i));
   }
 }
 
 }  // namespace
 
 GravityEstimate::GravityEstimate(double gravity_mps2) {
-  detail::require_positive(gravity_mps2, "GravityEstimate", "gravity_mps2");
+  checks::require_positive(gravity_mps2, "GravityEstimate", "gravity_mps2");
   mean_mps2_ = {0.0, 0.0, -gravity_mps2};
 }
 
 void GravityEstimate::update(const Vector3& acceleration_mps2, double lambda) {
   constexpr const char* kFunction = "GravityEstimate::update";
   require_finite_vector(acceleration_mps2, kFunction, "acceleration_mps2");
-  detail::require_within(lambda, 0.0, 1.0, kFunction, "lambda");
+  checks::require_within(lambda, 0.0, 1.0, kFunction, "lambda");
   if (lambda == 1.0) {
     throw std::invalid_argument(
         "GravityEstimate::update: lambda = 1 never learns from the accelerometer; use a value "
@@ -56,8 +56,10 @@ double terrain_slope_rad(const Vector3& gravity_direction, double front_lever_in
                          double rear_lever_inclination_rad) {
   constexpr const char* kFunction = "terrain_slope_rad";
   require_finite_vector(gravity_direction, kFunction, "gravity_direction");
-  detail::require_finite(front_lever_inclination_rad, kFunction, "front_lever_inclination_rad");
-  detail::require_finite(rear_lever_inclination_rad, kFunction, "rear_lever_inclination_rad");
+  checks::require_finite_estimate(front_lever_inclination_rad, kFunction,
+                                  "front_lever_inclination_rad");
+  checks::require_finite_estimate(rear_lever_inclination_rad, kFunction,
+                                  "rear_lever_inclination_rad");
   const double forward_component = std::clamp(gravity_direction[0], -1.0, 1.0);
   return std::acos(forward_component) - std::numbers::pi / 2.0 +
          (rear_lever_inclination_rad - front_lever_inclination_rad) / 2.0;

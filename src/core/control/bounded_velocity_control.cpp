@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 #include "core/control/velocity_control.hpp"
 
 namespace marsokhod::control {
@@ -70,8 +70,8 @@ double lower_term(const MotionState& state, double min_position, const ControlPa
 }
 
 void require_state(const MotionState& state, std::string_view law) {
-  require_finite(state.position, law, "state.position");
-  require_finite(state.velocity, law, "state.velocity");
+  checks::law::require_finite(state.position, law, "state.position");
+  checks::law::require_finite(state.velocity, law, "state.velocity");
 }
 
 void require_bounds(double min_position, double max_position, std::string_view law) {
@@ -112,7 +112,7 @@ double bounded_velocity_control(const MotionState& state, double target_velocity
   constexpr std::string_view kLaw = "bounded_velocity_control (4.16)";
   const StepCoefficients coefficients = step_coefficients(params);
   require_state(state, kLaw);
-  require_finite(target_velocity, kLaw, "target_velocity");
+  checks::law::require_finite(target_velocity, kLaw, "target_velocity");
   require_bounds(min_position, max_position, kLaw);
   const double lower = lower_term(state, min_position, params, coefficients);
   const double upper = upper_term(state, max_position, params, coefficients);

@@ -32,11 +32,11 @@ double ramp_deficit(double x) {
 MotionState closed_form(const MotionState& initial, double control, double rate_per_s,
                         double t_s) {
   constexpr std::string_view kLaw = "closed_form (4.10)/(4.11)";
-  require_finite(initial.position, kLaw, "initial.position");
-  require_finite(initial.velocity, kLaw, "initial.velocity");
-  require_finite(control, kLaw, "control");
-  require_positive(rate_per_s, kLaw, "rate_per_s");
-  require_finite(t_s, kLaw, "t_s");
+  checks::law::require_finite(initial.position, kLaw, "initial.position");
+  checks::law::require_finite(initial.velocity, kLaw, "initial.velocity");
+  checks::law::require_finite(control, kLaw, "control");
+  checks::law::require_positive(rate_per_s, kLaw, "rate_per_s");
+  checks::law::require_finite(t_s, kLaw, "t_s");
   if (t_s < 0.0) {
     throw std::invalid_argument("closed_form (4.10)/(4.11): t_s must be ≥ 0 (the model runs "
                                 "forward from the initial state), got " + std::to_string(t_s));
@@ -55,9 +55,9 @@ StepCoefficients step_coefficients(const ControlParams& params) {
 
 MotionState step(const MotionState& state, double control, const StepCoefficients& coefficients) {
   constexpr std::string_view kLaw = "step (4.12)/(4.13)";
-  require_finite(state.position, kLaw, "state.position");
-  require_finite(state.velocity, kLaw, "state.velocity");
-  require_finite(control, kLaw, "control");
+  checks::law::require_finite(state.position, kLaw, "state.position");
+  checks::law::require_finite(state.velocity, kLaw, "state.velocity");
+  checks::law::require_finite(control, kLaw, "control");
   return {state.position + coefficients.position_per_velocity_s * state.velocity +
               coefficients.position_per_control_s * control,
           coefficients.velocity_decay * state.velocity + coefficients.control_gain * control};
@@ -73,10 +73,10 @@ std::optional<TwoStepControls> two_step_controls(const MotionState& state,
                                                  const MotionState& target, double max_speed,
                                                  const StepCoefficients& coefficients) {
   constexpr std::string_view kLaw = "two_step_controls (4.12)/(4.13)";
-  require_finite(state.position, kLaw, "state.position");
-  require_finite(state.velocity, kLaw, "state.velocity");
-  require_finite(target.position, kLaw, "target.position");
-  require_finite(target.velocity, kLaw, "target.velocity");
+  checks::law::require_finite(state.position, kLaw, "state.position");
+  checks::law::require_finite(state.velocity, kLaw, "state.velocity");
+  checks::law::require_finite(target.position, kLaw, "target.position");
+  checks::law::require_finite(target.velocity, kLaw, "target.velocity");
   const double e = coefficients.velocity_decay;
   const double g = coefficients.control_gain;
   const double a = coefficients.position_per_velocity_s;

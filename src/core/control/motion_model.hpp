@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "core/control/control_params.hpp"
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::control {
 
@@ -80,15 +80,16 @@ template <typename Law>
 Trajectory simulate(const MotionState& initial, const ControlParams& params, std::size_t steps,
                     Law&& law) {
   const StepCoefficients coefficients = step_coefficients(params);
-  require_finite(initial.position, "simulate", "initial.position");
-  require_finite(initial.velocity, "simulate", "initial.velocity");
+  checks::law::require_finite(initial.position, "simulate", "initial.position");
+  checks::law::require_finite(initial.velocity, "simulate", "initial.velocity");
   Trajectory trajectory;
   trajectory.states.reserve(steps + 1);
   trajectory.controls.reserve(steps);
   trajectory.states.push_back(initial);
   for (std::size_t k = 0; k < steps; ++k) {
     const double control = static_cast<double>(law(trajectory.states.back()));
-    require_bounded(control, params.max_speed, "simulate", "the control c returned by the law");
+    checks::law::require_bounded(control, params.max_speed, "simulate",
+                                 "the control c returned by the law");
     trajectory.controls.push_back(control);
     trajectory.states.push_back(step(trajectory.states.back(), control, coefficients));
   }

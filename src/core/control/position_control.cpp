@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::control {
 
@@ -27,10 +27,10 @@ struct Problem {
 Problem make_problem(const MotionState& state, const MotionState& target,
                      const ControlParams& params, std::string_view law) {
   const StepCoefficients coefficients = step_coefficients(params);
-  require_finite(state.position, law, "state.position");
-  require_finite(state.velocity, law, "state.velocity");
-  require_finite(target.position, law, "target.position");
-  require_finite(target.velocity, law, "target.velocity");
+  checks::law::require_finite(state.position, law, "state.position");
+  checks::law::require_finite(state.velocity, law, "state.velocity");
+  checks::law::require_finite(target.position, law, "target.position");
+  checks::law::require_finite(target.velocity, law, "target.velocity");
   const double limit = kTargetSpeedFraction * params.max_speed;
   return {params.max_speed, params.rate_per_s, coefficients,
           {target.position, std::clamp(target.velocity, -limit, limit)}};

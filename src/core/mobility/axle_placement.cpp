@@ -6,13 +6,13 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 #include "core/mobility/lever_geometry.hpp"
 
 namespace marsokhod::mobility {
 
 DrivingIntent driving_intent(DrivingIntent previous, double drive_target_radps) {
-  control::require_finite(drive_target_radps, "driving_intent", "drive_target_radps (v1ᵈ)");
+  checks::law::require_finite(drive_target_radps, "driving_intent", "drive_target_radps (v1ᵈ)");
   if (drive_target_radps > 0.0) {
     return DrivingIntent::kForward;
   }
@@ -35,13 +35,13 @@ double rear_axle_factor(DrivingIntent intent, ClearanceIntent rear_clearance) {
 }
 
 ClearanceIntent front_clearance_intent(double front_joint_velocity_radps) {
-  control::require_finite(front_joint_velocity_radps, "front_clearance_intent",
+  checks::law::require_finite(front_joint_velocity_radps, "front_clearance_intent",
                           "front_joint_velocity_radps (w6)");
   return front_joint_velocity_radps < 0.0 ? ClearanceIntent::kIncrease : ClearanceIntent::kDecrease;
 }
 
 ClearanceIntent rear_clearance_intent(double rear_joint_velocity_radps) {
-  control::require_finite(rear_joint_velocity_radps, "rear_clearance_intent",
+  checks::law::require_finite(rear_joint_velocity_radps, "rear_clearance_intent",
                           "rear_joint_velocity_radps (w7)");
   return rear_joint_velocity_radps > 0.0 ? ClearanceIntent::kIncrease : ClearanceIntent::kDecrease;
 }
@@ -51,9 +51,9 @@ AxleDistanceRates axle_distance_rates(double front_joint_position_rad,
                                       double front_joint_velocity_radps,
                                       double rear_joint_velocity_radps,
                                       const GeometryParams& geometry) {
-  control::require_finite(front_joint_velocity_radps, "axle_distance_rates",
+  checks::law::require_finite(front_joint_velocity_radps, "axle_distance_rates",
                           "front_joint_velocity_radps (w6)");
-  control::require_finite(rear_joint_velocity_radps, "axle_distance_rates",
+  checks::law::require_finite(rear_joint_velocity_radps, "axle_distance_rates",
                           "rear_joint_velocity_radps (w7)");
   const double front_rate =
       lever_rates(front_joint_bending_rad(front_joint_position_rad), geometry).clearance_m_per_rad;
@@ -64,9 +64,9 @@ AxleDistanceRates axle_distance_rates(double front_joint_position_rad,
 
 AxleFactors two_joint_axle_factors(const AxleDistanceRates& rates, double epsilon) {
   constexpr std::string_view kWhere = "two_joint_axle_factors";
-  control::require_finite(rates.front_mps, kWhere, "rates.front_mps (yf)");
-  control::require_finite(rates.rear_mps, kWhere, "rates.rear_mps (yr)");
-  control::require_finite(epsilon, kWhere, "epsilon (ε)");
+  checks::law::require_finite(rates.front_mps, kWhere, "rates.front_mps (yf)");
+  checks::law::require_finite(rates.rear_mps, kWhere, "rates.rear_mps (yr)");
+  checks::law::require_finite(epsilon, kWhere, "epsilon (ε)");
   if (epsilon < 0.0 || epsilon > 1.0) {
     std::ostringstream message;
     message << kWhere << ": epsilon (ε, the desired ρf) must lie in [0, 1], got " << epsilon;
@@ -88,10 +88,10 @@ AxleFactors two_joint_axle_factors(const AxleDistanceRates& rates, double epsilo
 ExteriorAxleVelocities exterior_axle_velocities(const AxleDistanceRates& rates,
                                                 const AxleFactors& factors) {
   constexpr std::string_view kWhere = "exterior_axle_velocities";
-  control::require_finite(rates.front_mps, kWhere, "rates.front_mps (yf)");
-  control::require_finite(rates.rear_mps, kWhere, "rates.rear_mps (yr)");
-  control::require_finite(factors.front, kWhere, "factors.front (ρf)");
-  control::require_finite(factors.rear, kWhere, "factors.rear (ρr)");
+  checks::law::require_finite(rates.front_mps, kWhere, "rates.front_mps (yf)");
+  checks::law::require_finite(rates.rear_mps, kWhere, "rates.rear_mps (yr)");
+  checks::law::require_finite(factors.front, kWhere, "factors.front (ρf)");
+  checks::law::require_finite(factors.rear, kWhere, "factors.rear (ρr)");
   const double q = factors.front * rates.front_mps + factors.rear * rates.rear_mps;
   return {rates.rear_mps - q, rates.front_mps - q};
 }

@@ -2,7 +2,7 @@
 
 #include <cstddef>
 
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::mobility {
 namespace {
@@ -37,9 +37,9 @@ MotorVector front_joint_motion() { return single_motor(kFrontJoint); }
 MotorVector rear_joint_motion() { return single_motor(kRearJoint); }
 
 double spin_ratio(double clearance_m, const SpinParams& spin) {
-  control::require_finite(clearance_m, "spin_ratio", "clearance_m (c)");
-  control::require_finite(spin.slope_per_m, "spin_ratio", "SpinParams::slope_per_m");
-  control::require_finite(spin.offset, "spin_ratio", "SpinParams::offset");
+  checks::law::require_finite(clearance_m, "spin_ratio", "clearance_m (c)");
+  checks::law::require_finite(spin.slope_per_m, "spin_ratio", "SpinParams::slope_per_m");
+  checks::law::require_finite(spin.offset, "spin_ratio", "SpinParams::offset");
   return spin.slope_per_m * clearance_m + spin.offset;
 }
 
@@ -58,10 +58,10 @@ MotorVector spin_motion(double front_clearance_m, double rear_clearance_m, const
 
 MotorVector driving_motion(const DrivingSpeeds& speeds, double front_clearance_m,
                            double rear_clearance_m, const SpinParams& spin) {
-  control::require_finite(speeds.drive_radps, "driving_motion", "drive_radps (v1)");
-  control::require_finite(speeds.spin_radps, "driving_motion", "spin_radps (v2)");
-  control::require_finite(speeds.drift_radps, "driving_motion", "drift_radps (v3)");
-  control::require_finite(speeds.trench_radps, "driving_motion", "trench_radps (v4)");
+  checks::law::require_finite(speeds.drive_radps, "driving_motion", "drive_radps (v1)");
+  checks::law::require_finite(speeds.spin_radps, "driving_motion", "spin_radps (v2)");
+  checks::law::require_finite(speeds.drift_radps, "driving_motion", "drift_radps (v3)");
+  checks::law::require_finite(speeds.trench_radps, "driving_motion", "trench_radps (v4)");
   MotorVector motion{};
   add_scaled(motion, drive_straight_motion(), speeds.drive_radps);
   add_scaled(motion, spin_motion(front_clearance_m, rear_clearance_m, spin), speeds.spin_radps);
@@ -71,7 +71,7 @@ MotorVector driving_motion(const DrivingSpeeds& speeds, double front_clearance_m
 }
 
 void add_scaled(MotorVector& into, const MotorVector& motion, double coefficient) {
-  control::require_finite(coefficient, "add_scaled", "coefficient (v_j)");
+  checks::law::require_finite(coefficient, "add_scaled", "coefficient (v_j)");
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     into[i] += motion[i] * coefficient;
   }

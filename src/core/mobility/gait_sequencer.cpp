@@ -5,7 +5,7 @@
 #include <span>
 
 #include "core/control/bounded_velocity_control.hpp"
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 #include "core/control/position_control.hpp"
 #include "core/control/velocity_control.hpp"
 
@@ -15,18 +15,18 @@ namespace {
 constexpr std::string_view kWhere = "GaitSequencer::update";
 
 void check_input(const GaitInput& input) {
-  control::require_bounded(input.gait_speed, 1.0, kWhere, "gait_speed (s, the right stick)");
-  control::require_finite(input.front_joint.position, kWhere, "front_joint.position (p6)");
-  control::require_finite(input.front_joint.velocity, kWhere, "front_joint.velocity (w6)");
-  control::require_finite(input.rear_joint.position, kWhere, "rear_joint.position (p7)");
-  control::require_finite(input.rear_joint.velocity, kWhere, "rear_joint.velocity (w7)");
+  checks::law::require_bounded(input.gait_speed, 1.0, kWhere, "gait_speed (s, the right stick)");
+  checks::law::require_finite(input.front_joint.position, kWhere, "front_joint.position (p6)");
+  checks::law::require_finite(input.front_joint.velocity, kWhere, "front_joint.velocity (w6)");
+  checks::law::require_finite(input.rear_joint.position, kWhere, "rear_joint.position (p7)");
+  checks::law::require_finite(input.rear_joint.velocity, kWhere, "rear_joint.velocity (w7)");
   if (input.front_measured_radps) {
-    control::require_finite(*input.front_measured_radps, kWhere, "front_measured_radps (w6)");
+    checks::law::require_finite(*input.front_measured_radps, kWhere, "front_measured_radps (w6)");
   }
   if (input.rear_measured_radps) {
-    control::require_finite(*input.rear_measured_radps, kWhere, "rear_measured_radps (w7)");
+    checks::law::require_finite(*input.rear_measured_radps, kWhere, "rear_measured_radps (w7)");
   }
-  control::require_positive(input.period_s, kWhere, "period_s (h)");
+  checks::law::require_positive(input.period_s, kWhere, "period_s (h)");
 }
 
 }  // namespace
@@ -40,7 +40,7 @@ GaitSequencer::GaitSequencer(const GeometryParams& geometry, const JointParams& 
       front_strokes_(front_stroke_positions(geometry, gait, joints)),
       rear_strokes_(rear_stroke_positions(geometry, gait, joints)),
       max_joint_speed_radps_(gait.max_joint_speed_fraction * motors.max_no_load_speed_radps) {
-  control::require_positive(motors.max_no_load_speed_radps, "GaitSequencer",
+  checks::law::require_positive(motors.max_no_load_speed_radps, "GaitSequencer",
                             "MotorParams::max_no_load_speed_radps (w, 2.827)");
 }
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::mobility {
 namespace {
@@ -130,8 +130,8 @@ GaitState gait_state(Gait gait, std::size_t index, DrivingIntent intent) {
 }
 
 void validate(const GaitParams& gait, const GeometryParams& geometry) {
-  control::require_finite(gait.extended_rad, "GaitParams", "extended_rad (E, 2.55)");
-  control::require_finite(gait.max_joint_speed_fraction, "GaitParams",
+  checks::law::require_finite(gait.extended_rad, "GaitParams", "extended_rad (E, 2.55)");
+  checks::law::require_finite(gait.max_joint_speed_fraction, "GaitParams",
                           "max_joint_speed_fraction (0.5)");
   if (!(gait.extended_rad > contracted_bending_rad(geometry))) {
     reject("extended_rad must exceed acos(a/b) = " +
@@ -160,7 +160,7 @@ double stroke_target_rad(JointStroke stroke, const StrokePositions& positions,
     case JointStroke::kMidStroke: return positions.mid_stroke_rad;
     case JointStroke::kHeld: break;
   }
-  control::require_finite(held_position_rad, "stroke_target_rad", "held_position_rad");
+  checks::law::require_finite(held_position_rad, "stroke_target_rad", "held_position_rad");
   return held_position_rad;
 }
 

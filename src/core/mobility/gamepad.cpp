@@ -6,7 +6,7 @@
 #include <string_view>
 #include <utility>
 
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::mobility {
 namespace {
@@ -16,7 +16,7 @@ constexpr std::array<const char*, kGamepadAxisCount> kAxisNames = {
     "axis 3 (right stick y)"};
 
 void require_non_negative(double value, const char* field) {
-  control::require_finite(value, "OperatorParams", field);
+  checks::law::require_finite(value, "OperatorParams", field);
   if (value < 0.0) {
     std::ostringstream message;
     message << "OperatorParams: " << field << " must be ≥ 0, got " << value

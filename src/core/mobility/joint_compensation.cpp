@@ -2,7 +2,7 @@
 
 #include <string_view>
 
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 #include "core/mobility/elementary_motion.hpp"
 #include "core/mobility/lever_geometry.hpp"
 
@@ -33,7 +33,8 @@ double clearance_wheel_rate(double bending_rad, const GeometryParams& geometry) 
 
 MotorVector front_joint_compensation(double front_joint_position_rad, double front_axle_factor,
                                      const GeometryParams& geometry) {
-  control::require_finite(front_axle_factor, "front_joint_compensation", "front_axle_factor (ρf)");
+  checks::law::require_finite(front_axle_factor, "front_joint_compensation",
+                              "front_axle_factor (ρf)");
   const CompensationColumns columns = compensation_columns(
       front_joint_bending_rad(front_joint_position_rad), front_axle_factor, geometry);
   MotorVector n6{};
@@ -45,7 +46,7 @@ MotorVector front_joint_compensation(double front_joint_position_rad, double fro
 
 MotorVector rear_joint_compensation(double rear_joint_position_rad, double rear_axle_factor,
                                     const GeometryParams& geometry) {
-  control::require_finite(rear_axle_factor, "rear_joint_compensation", "rear_axle_factor (ρr)");
+  checks::law::require_finite(rear_axle_factor, "rear_joint_compensation", "rear_axle_factor (ρr)");
   const CompensationColumns columns = compensation_columns(
       rear_joint_bending_rad(rear_joint_position_rad), rear_axle_factor, geometry);
   MotorVector n7{};
@@ -57,12 +58,13 @@ MotorVector rear_joint_compensation(double rear_joint_position_rad, double rear_
 
 MotorVector walking_motion(const WalkingInput& input, const GeometryParams& geometry) {
   constexpr std::string_view kWhere = "walking_motion";
-  control::require_finite(input.front_joint_command_radps, kWhere,
+  checks::law::require_finite(input.front_joint_command_radps, kWhere,
                           "front_joint_command_radps (v6)");
-  control::require_finite(input.rear_joint_command_radps, kWhere, "rear_joint_command_radps (v7)");
-  control::require_finite(input.front_joint_velocity_radps, kWhere,
+  checks::law::require_finite(input.rear_joint_command_radps, kWhere,
+                              "rear_joint_command_radps (v7)");
+  checks::law::require_finite(input.front_joint_velocity_radps, kWhere,
                           "front_joint_velocity_radps (w6)");
-  control::require_finite(input.rear_joint_velocity_radps, kWhere,
+  checks::law::require_finite(input.rear_joint_velocity_radps, kWhere,
                           "rear_joint_velocity_radps (w7)");
   MotorVector motion{};
   add_scaled(motion, front_joint_motion(), input.front_joint_command_radps);

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::mobility {
 namespace {
@@ -31,11 +31,12 @@ void require_interval(double min_rad, double max_rad, std::string_view name) {
 
 void validate(const GeometryParams& geometry) {
   constexpr std::string_view kWhere = "GeometryParams";
-  control::require_positive(geometry.joint_to_exterior_axle_m, kWhere,
+  checks::law::require_positive(geometry.joint_to_exterior_axle_m, kWhere,
                             "joint_to_exterior_axle_m (a, 0.145 m)");
-  control::require_positive(geometry.center_axle_to_joint_m, kWhere,
+  checks::law::require_positive(geometry.center_axle_to_joint_m, kWhere,
                             "center_axle_to_joint_m (b, 0.413 m)");
-  control::require_positive(geometry.wheel_radius_m, kWhere, "wheel_radius_m (r, 0.115..0.125 m)");
+  checks::law::require_positive(geometry.wheel_radius_m, kWhere,
+                                "wheel_radius_m (r, 0.115..0.125 m)");
   if (!(geometry.joint_to_exterior_axle_m < geometry.center_axle_to_joint_m)) {
     reject(kWhere,
            "joint_to_exterior_axle_m (a) must be shorter than center_axle_to_joint_m (b), "
@@ -46,19 +47,19 @@ void validate(const GeometryParams& geometry) {
 void validate(const JointParams& joints) {
   require_interval(joints.front_min_rad, joints.front_max_rad, "front joint bounds (p6 of (5.3))");
   require_interval(joints.rear_min_rad, joints.rear_max_rad, "rear joint bounds (p7 of (5.3))");
-  control::require_positive(joints.control_rate_per_s, "JointParams",
+  checks::law::require_positive(joints.control_rate_per_s, "JointParams",
                             "control_rate_per_s (μ of (4.15), 0.4)");
-  control::require_positive(joints.target_tolerance_rad, "JointParams",
+  checks::law::require_positive(joints.target_tolerance_rad, "JointParams",
                             "target_tolerance_rad (0.05, Procedure 4.17)");
 }
 
 double front_joint_bending_rad(double front_joint_position_rad) {
-  control::require_finite(front_joint_position_rad, "front_joint_bending_rad", "p6");
+  checks::law::require_finite(front_joint_position_rad, "front_joint_bending_rad", "p6");
   return -front_joint_position_rad;
 }
 
 double rear_joint_bending_rad(double rear_joint_position_rad) {
-  control::require_finite(rear_joint_position_rad, "rear_joint_bending_rad", "p7");
+  checks::law::require_finite(rear_joint_position_rad, "rear_joint_bending_rad", "p7");
   return rear_joint_position_rad;
 }
 
@@ -68,7 +69,7 @@ double contracted_bending_rad(const GeometryParams& geometry) {
 }
 
 double axle_clearance_m(double bending_rad, const GeometryParams& geometry) {
-  control::require_finite(bending_rad, "axle_clearance_m", "bending_rad (γ)");
+  checks::law::require_finite(bending_rad, "axle_clearance_m", "bending_rad (γ)");
   validate(geometry);
   const double a = geometry.joint_to_exterior_axle_m;
   const double b = geometry.center_axle_to_joint_m;
@@ -109,7 +110,7 @@ double center_unit_pitch_rad(double front_joint_position_rad, double rear_joint_
 }
 
 double JointBounds::clamp(double position_rad) const {
-  control::require_finite(position_rad, "JointBounds::clamp", "position_rad");
+  checks::law::require_finite(position_rad, "JointBounds::clamp", "position_rad");
   return std::clamp(position_rad, min_rad, max_rad);
 }
 

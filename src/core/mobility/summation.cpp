@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/control/input_checks.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::mobility {
 namespace {
@@ -24,9 +24,9 @@ void check_inputs(const MotorVector& driving, const MotorVector& walking,
                   const MotorVector& bounds) {
   constexpr std::string_view kWhere = "sum_motions";
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    control::require_finite(driving[i], kWhere, motor_argument("driving_radps", i));
-    control::require_finite(walking[i], kWhere, motor_argument("walking_radps", i));
-    control::require_finite(bounds[i], kWhere, motor_argument("bounds_radps", i));
+    checks::law::require_finite(driving[i], kWhere, motor_argument("driving_radps", i));
+    checks::law::require_finite(walking[i], kWhere, motor_argument("walking_radps", i));
+    checks::law::require_finite(bounds[i], kWhere, motor_argument("bounds_radps", i));
     if (bounds[i] < 0.0) {
       std::ostringstream message;
       message << kWhere << ": " << motor_argument("bounds_radps", i) << " must be ≥ 0, got "
@@ -53,18 +53,18 @@ MotorVector motor_velocity_bounds(const MotorVector& scale, double max_duty,
                                   const adaptation::MotorCurve& curve, double supply_v,
                                   double nominal_supply_v) {
   constexpr std::string_view kWhere = "motor_velocity_bounds";
-  control::require_finite(max_duty, kWhere, "max_duty (D)");
+  checks::law::require_finite(max_duty, kWhere, "max_duty (D)");
   if (!(max_duty > 0.0 && max_duty <= 1.0)) {
     std::ostringstream message;
     message << kWhere << ": max_duty (D) must lie in (0, 1], got " << max_duty;
     throw std::invalid_argument(message.str());
   }
-  control::require_finite(supply_v, kWhere, "supply_v (U)");
-  control::require_positive(nominal_supply_v, kWhere, "nominal_supply_v (Ū, 24 V)");
+  checks::law::require_finite(supply_v, kWhere, "supply_v (U)");
+  checks::law::require_positive(nominal_supply_v, kWhere, "nominal_supply_v (Ū, 24 V)");
   const double common = curve.velocity_radps(max_duty) * std::max(supply_v, 0.0) / nominal_supply_v;
   MotorVector bounds{};
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    control::require_finite(scale[i], kWhere, motor_argument("scale (ζ)", i));
+    checks::law::require_finite(scale[i], kWhere, motor_argument("scale (ζ)", i));
     bounds[i] = std::max(scale[i], 0.0) * common;
   }
   return bounds;
@@ -72,9 +72,9 @@ MotorVector motor_velocity_bounds(const MotorVector& scale, double max_duty,
 
 double driving_scale_limit(double driving_radps, double walking_radps, double bound_radps) {
   constexpr std::string_view kWhere = "driving_scale_limit";
-  control::require_finite(driving_radps, kWhere, "driving_radps (a)");
-  control::require_finite(walking_radps, kWhere, "walking_radps (b)");
-  control::require_finite(bound_radps, kWhere, "bound_radps (c)");
+  checks::law::require_finite(driving_radps, kWhere, "driving_radps (a)");
+  checks::law::require_finite(walking_radps, kWhere, "walking_radps (b)");
+  checks::law::require_finite(bound_radps, kWhere, "bound_radps (c)");
   if (driving_radps == 0.0) {
     return std::numeric_limits<double>::infinity();
   }

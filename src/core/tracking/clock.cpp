@@ -1,11 +1,11 @@
 #include "core/tracking/clock.hpp"
 
-#include "core/tracking/validation.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::tracking {
 
 double clock_tick_s(int con) {
-  detail::require_con(con);
+  checks::setting::require_con(con);
   return static_cast<double>(con + 1) / kControllerClockHz;
 }
 
@@ -19,7 +19,7 @@ double clock_elapsed_s(std::uint16_t previous_tim, std::uint16_t tim, int con) {
 
 ClockTracker::ClockTracker(double start_time_s)
     : start_time_s_(start_time_s), time_s_(start_time_s), base_time_s_(start_time_s) {
-  detail::require_finite(start_time_s, "start_time_s", "pass a finite start time [s]");
+  checks::setting::require_finite(start_time_s, "start_time_s", "pass a finite start time [s]");
 }
 
 double ClockTracker::update(std::uint16_t tim, int con) {

@@ -1,17 +1,18 @@
 #include "core/tracking/gyro_null.hpp"
 
-#include "core/tracking/validation.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::tracking {
 
 GyroNullFilter::GyroNullFilter(double initial_counts, double lambda)
     : null_counts_(initial_counts), lambda_(lambda) {
-  detail::require_finite(initial_counts, "sensors.gyro_null_typ_counts");
-  detail::require_in_range(lambda, 0.0, 1.0, "filters.gyro_null_lambda");
+  checks::setting::require_finite(initial_counts, "sensors.gyro_null_typ_counts");
+  checks::setting::require_in_range(lambda, 0.0, 1.0, "filters.gyro_null_lambda");
 }
 
 double GyroNullFilter::update(double yaw_counts, bool rover_still) {
-  detail::require_finite(yaw_counts, "gyro reading yaw", "pass µ8's 10-bit yaw reading (0..1023)");
+  checks::setting::require_finite(yaw_counts, "gyro reading yaw",
+                                  "pass µ8's 10-bit yaw reading (0..1023)");
   if (rover_still) {
     null_counts_ = lambda_ * null_counts_ + (1.0 - lambda_) * yaw_counts;
   }

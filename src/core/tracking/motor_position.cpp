@@ -3,7 +3,7 @@
 #include <numbers>
 
 #include "core/tracking/counter.hpp"
-#include "core/tracking/validation.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::tracking {
 namespace {
@@ -35,7 +35,7 @@ PositionIncrement position_increment(const EncoderReading& previous,
 }
 
 double encoder_rad_per_count(int encoder_pulses_per_rev) {
-  detail::require_positive(static_cast<double>(encoder_pulses_per_rev),
+  checks::setting::require_positive(static_cast<double>(encoder_pulses_per_rev),
                            "motors.encoder_pulses_per_rev");
   return 2.0 * std::numbers::pi / static_cast<double>(encoder_pulses_per_rev);
 }
@@ -44,7 +44,7 @@ PositionTracker::PositionTracker(double initial_position_rad, int encoder_pulses
     : initial_position_rad_(initial_position_rad),
       rad_per_count_(encoder_rad_per_count(encoder_pulses_per_rev)),
       position_rad_(initial_position_rad) {
-  detail::require_finite(initial_position_rad, "motors.initial_position_rad");
+  checks::setting::require_finite(initial_position_rad, "motors.initial_position_rad");
 }
 
 double PositionTracker::update(const EncoderReading& reading) {

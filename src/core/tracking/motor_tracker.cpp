@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "core/tracking/motor_velocity.hpp"
-#include "core/tracking/validation.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::tracking {
 namespace {
@@ -23,7 +23,7 @@ std::size_t checked_motor_index(std::size_t motor_index) {
 
 double initial_position(const MotorParams& params, std::size_t motor_index) {
   const double position_rad = params.initial_position_rad[checked_motor_index(motor_index)];
-  detail::require_finite(position_rad,
+  checks::setting::require_finite(position_rad,
                          "motors.initial_position_rad[" + std::to_string(motor_index) + "]");
   return position_rad;
 }
@@ -73,7 +73,7 @@ AllMotorsTracker::AllMotorsTracker(const MotorParams& params, double start_time_
 const MotorsSample& AllMotorsTracker::update(
     const std::array<protocol::ControlResponse, kMotorCount>& responses, int con) {
   // Check the whole cycle before touching any motor, so a bad response leaves all unchanged.
-  detail::require_con(con);
+  checks::setting::require_con(con);
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     if (responses[i].node != i) {
       std::ostringstream message;

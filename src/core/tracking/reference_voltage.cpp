@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <numeric>
 
-#include "core/tracking/validation.hpp"
+#include "core/checks/checks.hpp"
 
 namespace marsokhod::tracking {
 
 ReferenceVoltage::ReferenceVoltage(double lambda) : lambda_(lambda) {
-  detail::require_in_range(lambda, 0.0, 1.0, "filters.reference_voltage_lambda");
+  checks::setting::require_in_range(lambda, 0.0, 1.0, "filters.reference_voltage_lambda");
 }
 
 double ReferenceVoltage::mean_supply_v() const {
@@ -19,7 +19,7 @@ double ReferenceVoltage::mean_supply_v() const {
 }
 
 double ReferenceVoltage::update(double supply_v, bool all_duty_zero) {
-  detail::require_finite(supply_v, "supply voltage U [V]",
+  checks::setting::require_finite(supply_v, "supply voltage U [V]",
                          "convert µ8's vcc reading with sensors.supply_* before passing it");
   started_ = true;
   const bool warming_up = reading_count_ < kSupplyAveragingReadings;

@@ -3,20 +3,17 @@
 #pragma once
 
 #include <array>
-#include <charconv>
 #include <cstddef>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "core/checks/checks.hpp"
+
 namespace marsokhod::sim {
 
-inline std::string xml_number(double value) {
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
-}
+inline std::string xml_number(double value) { return checks::format_number(value); }
 
 template <std::size_t N>
 std::string xml_numbers(const std::array<double, N>& values) {

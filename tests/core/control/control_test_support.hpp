@@ -16,13 +16,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "../../support/invalid_argument.hpp"
 #include "core/control/control_params.hpp"
 #include "core/control/motion_model.hpp"
 
 namespace marsokhod::control::testing {
 
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+using test_support::kNaN;
+inline constexpr double kInfinity = test_support::kInf;
 
 // Figure 4.10: μ = 0.1 /s, C = 1, and the thesis' cycle h = 0.0156 s (64 Hz).
 inline ControlParams figure_4_10_params() { return {0.1, 1.0, 0.0156}; }
@@ -103,17 +104,6 @@ inline double best_one_switch_time(const MotionState& start, const MotionState& 
   return best;
 }
 
-// Expects fn to throw std::invalid_argument whose message contains every fragment.
-inline void expect_invalid_argument(const std::function<void()>& fn,
-                                    std::initializer_list<std::string> fragments) {
-  try {
-    fn();
-    ADD_FAILURE() << "expected std::invalid_argument";
-  } catch (const std::invalid_argument& error) {
-    for (const std::string& fragment : fragments) {
-      EXPECT_THAT(error.what(), ::testing::HasSubstr(fragment));
-    }
-  }
-}
+using test_support::expect_invalid_argument;
 
 }  // namespace marsokhod::control::testing

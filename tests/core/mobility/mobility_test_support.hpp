@@ -11,12 +11,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "../../support/invalid_argument.hpp"
 #include "core/params.hpp"
 
 namespace marsokhod::mobility::testing {
 
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+using test_support::kNaN;
+inline constexpr double kInfinity = test_support::kInf;
 
 // The chapter 3.1 geometry with the wheel radius r [m] (0.125 on solid ground, 0.115 on sand).
 inline GeometryParams geometry_with_radius(double wheel_radius_m) {
@@ -31,17 +32,6 @@ inline double central_difference(const std::function<double(double)>& f, double 
   return (f(x + step) - f(x - step)) / (2.0 * step);
 }
 
-// Expects fn to throw std::invalid_argument whose message contains every fragment.
-inline void expect_invalid_argument(const std::function<void()>& fn,
-                                    std::initializer_list<std::string> fragments) {
-  try {
-    fn();
-    ADD_FAILURE() << "expected std::invalid_argument";
-  } catch (const std::invalid_argument& error) {
-    for (const std::string& fragment : fragments) {
-      EXPECT_THAT(error.what(), ::testing::HasSubstr(fragment));
-    }
-  }
-}
+using test_support::expect_invalid_argument;
 
 }  // namespace marsokhod::mobility::testing

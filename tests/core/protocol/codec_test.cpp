@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "../../support/invalid_argument.hpp"
 #include "protocol_test_util.hpp"
 
 namespace marsokhod::protocol {
@@ -150,18 +151,7 @@ TEST(Helpers, NodeTypeAndNameOfEveryMessage) {
 }
 
 // encode must refuse what the wire cannot carry, naming the field, its value and the range.
-void expect_refused(const std::function<void()>& encode_call,
-                    const std::vector<std::string>& fragments) {
-  try {
-    encode_call();
-    ADD_FAILURE() << "encode accepted a message with " << fragments.front();
-  } catch (const std::invalid_argument& error) {
-    for (const std::string& fragment : fragments) {
-      EXPECT_NE(std::string(error.what()).find(fragment), std::string::npos)
-          << "'" << fragment << "' missing from: " << error.what();
-    }
-  }
-}
+constexpr auto expect_refused = &test_support::expect_invalid_argument;
 
 TEST(EncodeRefuses, MotorNodeAbove7) {
   expect_refused([] { encode(ControlRequest{8, false, false, 0}); }, {"node = 8", "0..7"});

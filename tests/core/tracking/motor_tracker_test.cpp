@@ -55,10 +55,9 @@ TEST(MotorTracker, RejectsForeignNodeAndBadConWithoutChange) {
   foreign.node = kFrontRight;
   EXPECT_THAT(invalid_argument_message([&] { tracker.update(foreign, 0); }),
               ::testing::HasSubstr("node 1"));
-  EXPECT_FALSE(
-      invalid_argument_message([&] { tracker.update(controller.respond(5), 300); }).empty());
+  EXPECT_THROW(tracker.update(controller.respond(5), 300), std::invalid_argument);
   protocol::ControlResponse too_fast = controller.respond(0x8000);
-  EXPECT_FALSE(invalid_argument_message([&] { tracker.update(too_fast, 0); }).empty());
+  EXPECT_THROW(tracker.update(too_fast, 0), std::invalid_argument);
   EXPECT_DOUBLE_EQ(tracker.sample().time_s, 0.0);
   EXPECT_DOUBLE_EQ(tracker.sample().position_rad, 0.0);
   EXPECT_DOUBLE_EQ(tracker.sample().velocity_radps, 0.0);
@@ -142,7 +141,7 @@ TEST(AllMotorsTracker, MisplacedResponseLeavesEveryMotorUnchanged) {
     EXPECT_FALSE(tracker.motor(i).started()) << kMotorNames[i];
   }
   responses[7].node = kSensorNode;
-  EXPECT_FALSE(invalid_argument_message([&] { tracker.update_motor(responses[7], 0); }).empty());
+  EXPECT_THROW(tracker.update_motor(responses[7], 0), std::invalid_argument);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../../support/invalid_argument.hpp"
 #include "core/protocol/messages.hpp"
 #include "core/tracking/motor_position.hpp"
 
@@ -65,15 +66,6 @@ class EmulatedMotorController {
   std::int64_t true_counts_ = 0;
 };
 
-// Runs call and returns the what() of the std::invalid_argument it throws ("" if none).
-template <typename Call>
-std::string invalid_argument_message(Call call) {
-  try {
-    call();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::invalid_argument_message;
 
 }  // namespace marsokhod::tracking::testing

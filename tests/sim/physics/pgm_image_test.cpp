@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "../../support/invalid_argument.hpp"
+
 namespace marsokhod::sim {
 namespace {
 
@@ -39,12 +41,7 @@ TEST(PgmImage, BinarySixteenBitIsBigEndian) {
 }
 
 void expect_rejected(const std::string& bytes, const std::string& fragment) {
-  try {
-    parse_pgm(bytes);
-    FAIL() << "accepted: " << bytes;
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
+  test_support::expect_invalid_argument([&] { parse_pgm(bytes); }, {fragment});
 }
 
 TEST(PgmImage, RejectsWhatItCannotRead) {

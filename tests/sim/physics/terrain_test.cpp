@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "../../support/invalid_argument.hpp"
+
 namespace marsokhod::sim {
 namespace {
 
@@ -22,14 +24,7 @@ TerrainSpec read(const std::string& text, const std::filesystem::path& base = ".
 
 // The error must name the key (so that an operator finds it) and say what is wrong.
 void expect_error(const std::string& text, const std::string& key, const std::string& what) {
-  try {
-    read(text);
-    FAIL() << "accepted:\n" << text;
-  } catch (const std::invalid_argument& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(key), std::string::npos) << message;
-    EXPECT_NE(message.find(what), std::string::npos) << message;
-  }
+  test_support::expect_invalid_argument([&] { read(text); }, {key, what});
 }
 
 TEST(TerrainMaterials, SandIsSlipperierAndResistsRolling) {

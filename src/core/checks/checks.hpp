@@ -1,0 +1,87 @@
+// Argument checks shared by the core layers. NaN and ±inf never pass. Each check throws
+// std::invalid_argument naming the function (or law, or configuration key), the argument and its
+// value, and saying what to do, in one of three forms:
+//   arguments of a function (adaptation, behaviour):
+//     "<function>: <argument> = <value>; <requirement>"   (the value in its shortest exact form)
+//   inputs of a control law (control, mobility), namespace law:
+//     "<law>: <argument> must be <requirement>, got <value>; <hint>"
+//   configuration values and run-time inputs of the tracking, namespace setting:
+//     "invalid <name> = <value>: it must be <requirement>; <remedy>"
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace marsokhod::checks {
+
+// Shortest round-trip text of a value ("0.0157", "nan", "-inf").
+std::string format_number(double value);
+
+// "argument" or "argument[index]".
+std::string argument_name(std::string_view argument, std::size_t index);
+
+// Throws unless value is finite.
+void require_finite(double value, std::string_view function, std::string_view argument);
+
+// Throws unless value is finite, for the behaviours' inputs: estimates, whose NaN or infinity
+// means the estimate feeding the behaviour is broken upstream.
+void require_finite_estimate(double value, std::string_view function, std::string_view argument);
+
+// Throws unless value is finite and > 0.
+void require_positive(double value, std::string_view function, std::string_view argument);
+
+// Throws unless value is finite and ≥ 0.
+void require_non_negative(double value, std::string_view function, std::string_view argument);
+
+// Throws unless value is finite and within [lowest, highest].
+void require_within(double value, double lowest, double highest, std::string_view function,
+                    std::string_view argument);
+
+// Throws unless value is a duty cycle: finite and in [−1, 1].
+void require_duty(double value, std::string_view function, std::string_view argument);
+
+// Throws unless a computed value is finite: finite inputs so large that the arithmetic overflows.
+void require_finite_result(double value, std::string_view function, std::string_view result);
+
+// The inputs of a control law: every number that enters a law is checked, so that no NaN or
+// infinity can leave one.
+namespace law {
+
+// Throws "<law>: <argument> must be a finite number, got <value>; <hint>" unless value is finite.
+void require_finite(double value, std::string_view law, std::string_view argument);
+
+// Throws unless value is finite and > 0.
+void require_positive(double value, std::string_view law, std::string_view argument);
+
+// Throws unless value is finite and |value| ≤ bound.
+void require_bounded(double value, double bound, std::string_view law, std::string_view argument);
+
+}  // namespace law
+
+// Configuration values, named by their key in config/marsokhod.toml where they have one; callers
+// checking run-time inputs pass their own remedy.
+namespace setting {
+
+// What to do about a bad configuration value.
+inline constexpr std::string_view kConfigRemedy = "correct it in config/marsokhod.toml";
+
+// Throws unless value is finite.
+void require_finite(double value, std::string_view name, std::string_view remedy = kConfigRemedy);
+
+// Throws unless value is finite and lies in [min, max].
+void require_in_range(double value, double min, double max, std::string_view name,
+                      std::string_view remedy = kConfigRemedy);
+
+// Throws unless value is finite and strictly positive.
+void require_positive(double value, std::string_view name, std::string_view remedy = kConfigRemedy);
+
+// Throws unless value is finite and not zero.
+void require_nonzero(double value, std::string_view name, std::string_view remedy = kConfigRemedy);
+
+// Throws unless the con register value lies in 0..255 (chapter 3.2).
+void require_con(int con);
+
+}  // namespace setting
+
+}  // namespace marsokhod::checks
