@@ -88,7 +88,7 @@ int run_calibrate_command(const CalibrateArgs& args, const LoadedConfig& config,
       }
       source = bench->source();
       out << "marsokhod calibrate " << info->name << ": " << info->reference << " on " << source
-          << "; " << describe_calibration(config.params) << "\n";
+          << "; " << describe_calibration(config.calibration) << "\n";
     }
     result = info->run(bench.get(), config.params, options);
     if (bench) bench->stop();
