@@ -7,7 +7,7 @@ SOAK_SEED ?= 1
 SWEEP_SEEDS ?= 1-20
 CMAKE_FLAGS ?= -DMARSOKHOD_WERROR=ON
 
-.PHONY: all deps configure build test bench fuzz run web soak sweep clean
+.PHONY: all deps configure build test bench fuzz run web soak sweep params-doc clean
 
 all: build
 
@@ -45,6 +45,11 @@ sweep: build
 web: deps
 	@if [ -f web/package.json ]; then cd web && npm ci --no-audit --no-fund && npm run build; \
 	else echo "make web: no console sources (web/package.json) yet"; fi
+
+# docs/parameters.md from the parameter schema (src/config/param_schema.cpp); a test fails while
+# the page in the tree is stale.
+params-doc: build
+	$(BUILD_DIR)/src/config/marsokhod-param-docs > docs/parameters.md
 
 # The simulated rover, the driver and the console in one process; open the printed URL.
 run: build web

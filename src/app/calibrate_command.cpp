@@ -89,7 +89,7 @@ int run_calibrate_command(const CalibrateArgs& args, const LoadedConfig& config,
       }
       source = bench->source();
       out << "marsokhod calibrate " << info->name << ": " << info->reference << " on " << source
-          << "; " << describe_calibration(config.params) << "\n";
+          << "; " << describe_calibration(config.calibration) << "\n";
     }
     result = calibration::run_procedure(bench.get(), *info, config.params, options);
     if (bench) bench->stop();

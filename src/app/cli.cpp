@@ -205,11 +205,16 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     }
   }
   try {
-    loaded.nominal = config::load_params(*config_path);
-    loaded.params = loaded.nominal;
+    const config::Configuration nominal = config::load_configuration(*config_path);
+    loaded.nominal = nominal.params;
+    loaded.params = nominal.params;
+    loaded.console = nominal.console;
     if (!calibration_file.empty()) {
       loaded.calibration_file = calibration_file;
-      loaded.params = config::load_params(*config_path, calibration_file);
+      const config::Configuration calibrated =
+          config::load_configuration(*config_path, calibration_file);
+      loaded.params = calibrated.params;
+      loaded.calibration = calibrated.calibration;
     }
   } catch (const config::ConfigError& e) {
     err << "marsokhod: " << e.what() << "\n";
@@ -233,7 +238,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   if (replay_cmd->parsed()) return run_replay_command(replay_dir, params, out, err);
   if (run_cmd->parsed()) return run_live(run, loaded, out, err);
   if (sim_cmd->parsed()) return run_sim(sim, loaded.nominal, out, err);
-  if (drive_cmd->parsed()) return run_drive(drive, params, out, err);
+  if (drive_cmd->parsed()) return run_drive(drive, loaded, out, err);
   return kUsageError;
 }
 

@@ -64,7 +64,7 @@ void print_status_line(double t, const driver::DriverStatus& s, std::ostream& ou
 }
 
 // --token, else --token-file, else $MARSOKHOD_TOKEN, else [console] token; empty: generated.
-std::string console_token(const ConsoleArgs& args, const ConsoleParams& config) {
+std::string console_token(const ConsoleArgs& args, const config::ConsoleParams& config) {
   if (!args.token.empty()) return args.token;
   if (!args.token_file.empty()) return link::read_token_file(args.token_file);
   if (const char* env = std::getenv("MARSOKHOD_TOKEN"); env != nullptr && *env != '\0') return env;
@@ -75,17 +75,19 @@ std::string console_token(const ConsoleArgs& args, const ConsoleParams& config) 
 // configuration changes.
 class ConsoleLink {
  public:
-  ConsoleLink(const Params& params, const ConsoleArgs& args, std::ostream& out) : params_(&params) {
+  ConsoleLink(const LoadedConfig& config, const ConsoleArgs& args, std::ostream& out)
+      : params_(&config.params) {
     if (args.no_console) return;
     link::ServerOptions options;
-    const ConsoleParams& c = params.console;
+    const config::ConsoleParams& c = config.console;
     options.listen = link::parse_listen_address(args.listen.empty() ? c.listen : args.listen);
     options.static_dir = find_web_dist(args.web);
     options.token = console_token(args, c);
     options.allowed_hosts = c.allowed_hosts;
     options.allowed_origins = c.allowed_origins;
     options.status_period_s = 1.0 / (args.status_rate_hz > 0.0 ? args.status_rate_hz : c.status_rate_hz);
-    server_ = std::make_unique<link::LinkServer>(params, options);
+    options.calibration = config.calibration;
+    server_ = std::make_unique<link::LinkServer>(config.params, options);
     server_->start();
     out << "console: " << server_->console_url() << "\n";
     if (!options.static_dir) {
@@ -153,7 +155,7 @@ int run_live(const RunArgs& args, const LoadedConfig& config, std::ostream& out,
   try {
     session = std::make_unique<runner::Session>(config.nominal, params,
                                                 sim_options(args.scenario, args.seed, scenario));
-    console = std::make_unique<ConsoleLink>(params, args.console, out);
+    console = std::make_unique<ConsoleLink>(config, args.console, out);
     if (!args.record.empty()) {
       recorder = std::make_unique<runner::Recorder>(args.record, config.config_file,
                                                     config.calibration_file);
@@ -162,12 +164,12 @@ int run_live(const RunArgs& args, const LoadedConfig& config, std::ostream& out,
     err << "marsokhod run: " << e.what() << "\n";
     return kUsageError;
   }
-  out << describe_calibration(params) << "\n";
+  out << describe_calibration(config.calibration) << "\n";
   install_signal_handlers();
   const auto start = Clock::now();
   const auto period = std::chrono::microseconds(session->cycle_us());
   const double rate_hz = args.console.status_rate_hz > 0.0 ? args.console.status_rate_hz
-                                                           : params.console.status_rate_hz;
+                                                           : config.console.status_rate_hz;
   const int status_every =
       std::max(1, static_cast<int>(std::lround(1.0 / (params.cycle.period_s * rate_hz))));
   std::size_t next_fault = 0;
@@ -240,18 +242,20 @@ int run_sim(const SimArgs& args, const Params& params, std::ostream& out, std::o
   return 0;
 }
 
-int run_drive(const DriveArgs& args, const Params& params, std::ostream& out, std::ostream& err) {
+int run_drive(const DriveArgs& args, const LoadedConfig& config, std::ostream& out,
+              std::ostream& err) {
+  const Params& params = config.params;
   std::unique_ptr<bus::CanTransport> transport;
   std::unique_ptr<ConsoleLink> console;
   try {
     transport = bus::open_transport(args.can);
-    console = std::make_unique<ConsoleLink>(params, args.console, out);
+    console = std::make_unique<ConsoleLink>(config, args.console, out);
   } catch (const std::exception& e) {
     err << "marsokhod drive: " << e.what() << "\n";
     return kUsageError;
   }
-  out << "driving over " << transport->name() << "; " << describe_calibration(params) << "\n"
-      << std::flush;
+  out << "driving over " << transport->name() << "; "
+      << describe_calibration(config.calibration) << "\n" << std::flush;
   install_signal_handlers();
   driver::Driver driver(params);
   const auto start = Clock::now();

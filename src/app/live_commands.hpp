@@ -53,7 +53,8 @@ struct DriveArgs {
 int run_live(const RunArgs& args, const LoadedConfig& config, std::ostream& out,
              std::ostream& err);
 int run_sim(const SimArgs& args, const Params& params, std::ostream& out, std::ostream& err);
-int run_drive(const DriveArgs& args, const Params& params, std::ostream& out, std::ostream& err);
+int run_drive(const DriveArgs& args, const LoadedConfig& config, std::ostream& out,
+              std::ostream& err);
 
 // Where the console's files are: the given folder, else ./web/dist, else the source tree's.
 std::optional<std::filesystem::path> find_web_dist(const std::string& given);

@@ -6,28 +6,47 @@
 #include <set>
 #include <sstream>
 
+#include "config/config_reader.hpp"
+#include "config/param_schema.hpp"
+
 namespace marsokhod::config {
 namespace {
 
-const std::map<std::string, std::set<std::string>>& calibratable_keys() {
-  static const std::map<std::string, std::set<std::string>> keys = {
-      {"sensors",
-       {"accelerometer_minus_g_counts", "accelerometer_plus_g_counts", "supply_v_per_count",
-        "supply_offset_v"}},
-      {"motors", {"backlash_rad", "scale"}},
-      {"load", {"gain_same_sign_radps_per_nm", "gain_opposite_sign_radps_per_nm"}},
-      {"spin", {"slope_per_m", "offset"}},
-      {"power", {"duty_drop_v", "load_drop_v_s2_per_rad2"}},
-  };
+using KeysBySection = std::map<std::string, std::set<std::string>, std::less<>>;
+
+// The schema's calibrated keys of [tables] (calibratable_keys) and of [[arrays of tables]], whose
+// every key is calibrated (calibratable_tables).
+KeysBySection calibrated_keys(bool repeated) {
+  KeysBySection keys;
+  for (const SectionSpec& section : param_schema()) {
+    if (section.repeated != repeated) continue;
+    for (const ParamSpec& param : section.params) {
+      if (param.calibrated) keys[std::string(section.name)].emplace(param.key);
+    }
+  }
   return keys;
 }
 
-const std::map<std::string, std::set<std::string>>& calibratable_tables() {
-  static const std::map<std::string, std::set<std::string>> keys = {
-      {"motor_curve", {"icr", "duty", "no_load_speed_radps"}},
-      {"response", {"period_s", "con", "delta"}},
-  };
+const KeysBySection& calibratable_keys() {
+  static const KeysBySection keys = calibrated_keys(false);
   return keys;
+}
+
+const KeysBySection& calibratable_tables() {
+  static const KeysBySection keys = calibrated_keys(true);
+  return keys;
+}
+
+// "motors, motor_curve, …, sensors and calibration": what a calibration file may hold.
+std::string calibrated_sections() {
+  std::string out;
+  for (const SectionSpec& section : param_schema()) {
+    if (calibratable_keys().contains(section.name) ||
+        calibratable_tables().contains(section.name)) {
+      out += std::string(section.name) + ", ";
+    }
+  }
+  return out.substr(0, out.size() - 2) + " and calibration";
 }
 
 std::string join_names(const std::set<std::string>& names) {
@@ -43,6 +62,36 @@ bool same_table(const std::string& kind, const toml::table& a, const toml::table
   const auto pb = b["period_s"].value<double>();
   return a["con"].value<int64_t>() == b["con"].value<int64_t>() && pa && pb &&
          std::abs(*pa - *pb) <= 0.001;
+}
+
+// The keys a calibration table states, checked by the schema: its problems name the calibration
+// file's lines, which the merged configuration no longer knows.
+void check_stated_values(const SectionSpec& section, const toml::table* table, std::string path,
+                         std::vector<std::string>& problems) {
+  if (table == nullptr) return;
+  ConfigReader reader(table, std::move(path), problems);
+  reader.name_files();
+  for (const ParamSpec& param : section.params) {
+    if (table->contains(param.key)) (void)reader.read(param);
+  }
+}
+
+std::vector<std::string> value_problems(const toml::table& calibration) {
+  std::vector<std::string> problems;
+  for (const auto& [key, node] : calibration) {
+    const SectionSpec* section = find_section(key.str());
+    if (section == nullptr) continue;
+    const std::string name(key.str());
+    if (const toml::array* entries = node.as_array()) {
+      for (std::size_t i = 0; i < entries->size(); ++i) {
+        check_stated_values(*section, entries->get(i)->as_table(),
+                            name + "[" + std::to_string(i) + "]", problems);
+      }
+    } else {
+      check_stated_values(*section, node.as_table(), name, problems);
+    }
+  }
+  return problems;
 }
 
 }  // namespace
@@ -82,8 +131,7 @@ std::vector<std::string> calibration_problems(const toml::table& calibration) {
     const auto s = calibratable_keys().find(section);
     if (s == calibratable_keys().end()) {
       problems.push_back(section + ": not a calibrated section (a calibration file holds only " +
-                         "sensors, motors, motor_curve, response, load, spin, power and " +
-                         "calibration; change other settings in the configuration)");
+                         calibrated_sections() + "; change other settings in the configuration)");
       continue;
     }
     const toml::table* table = node.as_table();
@@ -105,6 +153,7 @@ std::vector<std::string> calibration_problems(const toml::table& calibration) {
 toml::table merge_calibration(const toml::table& base, const toml::table& calibration,
                               const std::string& calibration_source) {
   std::vector<std::string> problems = calibration_problems(calibration);
+  if (problems.empty()) problems = value_problems(calibration);
   if (!problems.empty()) throw ConfigError(calibration_source, std::move(problems));
   toml::table merged = base;
   for (const auto& [key, node] : calibration) {
@@ -140,37 +189,27 @@ toml::table merge_calibration(const toml::table& base, const toml::table& calibr
   return merged;
 }
 
-toml::table read_toml_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ConfigError(file.string(), {"cannot open the file: check the path"});
-  std::ostringstream text;
-  text << in.rdbuf();
-  try {
-    return toml::parse(text.str(), file.string());
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << "line " << e.source().begin.line << ", column " << e.source().begin.column
-        << ": TOML syntax error: " << e.description();
-    throw ConfigError(file.string(), {msg.str()});
+Configuration load_configuration(const std::filesystem::path& config_file,
+                                 const std::filesystem::path& calibration_file) {
+  const toml::table base = read_toml_file(config_file);
+  // The configuration alone must be valid too: its errors are named against its own file.
+  (void)configuration_from_table(base, config_file.string());
+  const toml::table calibration = read_toml_file(calibration_file);
+  const toml::table merged = merge_calibration(base, calibration, calibration_file.string());
+  Configuration config = configuration_from_table(
+      merged, config_file.string() + " with calibration " + calibration_file.string());
+  config.calibration.file = calibration_file.string();
+  if (const toml::table* reports = calibration["calibration"].as_table()) {
+    for (const auto& [procedure, report] : *reports) {
+      config.calibration.procedures.emplace_back(procedure.str());
+    }
   }
+  return config;
 }
 
 Params load_params(const std::filesystem::path& config_file,
                    const std::filesystem::path& calibration_file) {
-  const toml::table base = read_toml_file(config_file);
-  // The configuration alone must be valid too: its errors are named against its own file.
-  (void)params_from_table(base, config_file.string());
-  const toml::table calibration = read_toml_file(calibration_file);
-  const toml::table merged = merge_calibration(base, calibration, calibration_file.string());
-  Params params = params_from_table(merged, config_file.string() + " with calibration " +
-                                                calibration_file.string());
-  params.calibration.file = calibration_file.string();
-  if (const toml::table* reports = calibration["calibration"].as_table()) {
-    for (const auto& [procedure, report] : *reports) {
-      params.calibration.procedures.emplace_back(procedure.str());
-    }
-  }
-  return params;
+  return load_configuration(config_file, calibration_file).params;
 }
 
 Params apply_calibration_values(const std::filesystem::path& config_file,

@@ -1,6 +1,6 @@
 // The calibration file: what `marsokhod calibrate` measured, loaded on top of
 // config/marsokhod.toml. It uses the configuration's own sections and keys, limited to the values
-// a procedure fits:
+// a procedure fits (the schema's `calibrated` parameters, param_schema.cpp):
 //   [sensors]  accelerometer_minus_g_counts, accelerometer_plus_g_counts     (Procedure 3.3)
 //              supply_v_per_count, supply_offset_v                           (Procedure 3.5)
 //   [motors]   backlash_rad                                                  (Procedures 4.1/4.3)
@@ -19,14 +19,17 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "config/configuration.hpp"
 #include "config/load_params.hpp"
 #include "core/params.hpp"
 
 namespace marsokhod::config {
 
-// The configuration's TOML read into Params (every key required, ranges, consistency).
+// The configuration's TOML read by the schema (every key required, ranges, consistency).
+Configuration configuration_from_table(const toml::table& root, const std::string& source);
 Params params_from_table(const toml::table& root, const std::string& source);
 
 // Problems with a calibration table (unknown sections or keys, wrong shapes); empty when fine.
@@ -37,11 +40,15 @@ std::vector<std::string> calibration_problems(const toml::table& calibration);
 toml::table merge_calibration(const toml::table& base, const toml::table& calibration,
                               const std::string& calibration_source);
 
-// Reads a TOML file into a table; ConfigError when it is missing or not TOML.
-toml::table read_toml_file(const std::filesystem::path& file);
+// TOML text or a file as a table; ConfigError when it is missing (`missing_hint` appended to the
+// message) or not TOML.
+toml::table parse_toml(std::string_view toml_text, const std::string& source);
+toml::table read_toml_file(const std::filesystem::path& file, std::string_view missing_hint = "");
 
-// The configuration file with the calibration file on top. `params.calibration` names the file
-// and the procedures it holds. Throws ConfigError naming the file at fault.
+// The configuration file with the calibration file on top. `calibration` names the file and the
+// procedures it holds. Throws ConfigError naming the file at fault.
+Configuration load_configuration(const std::filesystem::path& config_file,
+                                 const std::filesystem::path& calibration_file);
 Params load_params(const std::filesystem::path& config_file,
                    const std::filesystem::path& calibration_file);
 

@@ -1,5 +1,6 @@
 #include "config/config_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -21,13 +22,33 @@ std::string show(const toml::node& node) {
   return out.str();
 }
 
+// Single-character edits from a to b (Levenshtein), for suggesting the key a typo meant.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
 std::string show_range(double min, double max) {
-  std::ostringstream out;
-  out << '[' << min << ", " << max << ']';
-  return out.str();
+  return "[" + show_number(min) + ", " + show_number(max) + "]";
 }
 
 }  // namespace
+
+std::string show_number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 ConfigReader::ConfigReader(const toml::table* table, std::string path,
                            std::vector<std::string>& problems)
@@ -37,10 +58,16 @@ std::string ConfigReader::key_name(std::string_view key) const {
   return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
 }
 
+// " (FILE:LINE)" or " (line LINE)" where toml++ knows it; a merged table's copied nodes have no
+// position.
 std::string ConfigReader::where(const toml::node& node) const {
-  const auto& begin = node.source().begin;
-  if (begin.line == 0) return {};
-  return " (line " + std::to_string(begin.line) + ")";
+  const toml::source_region& source = node.source();
+  if (source.begin.line == 0) return {};
+  const std::string line = std::to_string(source.begin.line);
+  if (!name_files_ || source.path == nullptr || source.path->empty()) {
+    return " (line " + line + ")";
+  }
+  return " (" + *source.path + ":" + line + ")";
 }
 
 void ConfigReader::problem(std::string message) { problems_->push_back(std::move(message)); }
@@ -53,6 +80,33 @@ const toml::node* ConfigReader::find(std::string_view key, std::string_view expe
     problem(key_name(key) + ": missing; expected " + std::string(expected));
   }
   return node;
+}
+
+std::optional<ParamValue> ConfigReader::read(const ParamSpec& spec) {
+  const std::size_t problems_before = problems_->size();
+  ParamValue read_value = value(spec);
+  if (table_ == nullptr || problems_->size() != problems_before) return std::nullopt;
+  return read_value;
+}
+
+ParamValue ConfigReader::value(const ParamSpec& p) {
+  switch (p.field.kind) {
+    case ParamKind::kNumber:
+      return number(p.key, p.min, p.max);
+    case ParamKind::kInteger:
+      return std::int64_t{integer(p.key, static_cast<int>(p.min), static_cast<int>(p.max))};
+    case ParamKind::kBoolean:
+      return boolean(p.key);
+    case ParamKind::kText:
+      return text(p.key, p.max_length);
+    case ParamKind::kTexts:
+      return texts(p.key, p.max_count, p.max_length);
+    case ParamKind::kChoice:
+      return static_cast<std::int64_t>(choice(p.key, p.choices));
+    case ParamKind::kNumbers:
+      return numbers(p.key, p.min, p.max, p.count_min(), p.count_max());
+  }
+  return {};
 }
 
 double ConfigReader::number(std::string_view key, double min, double max) {
@@ -145,22 +199,21 @@ std::vector<std::string> ConfigReader::texts(std::string_view key, std::size_t m
   return out;
 }
 
-std::string ConfigReader::choice(std::string_view key,
-                                 std::initializer_list<std::string_view> allowed) {
+std::size_t ConfigReader::choice(std::string_view key, std::span<const std::string_view> allowed) {
   std::string options;
-  for (std::string_view a : allowed) options += (options.empty() ? "\"" : ", \"") + std::string(a) + "\"";
+  for (std::string_view a : allowed) {
+    options += (options.empty() ? "\"" : ", \"") + std::string(a) + "\"";
+  }
   const toml::node* node = find(key, "one of " + options);
-  const std::string fallback(*allowed.begin());
-  if (node == nullptr) return fallback;
-  const auto* text = node->as_string();
-  if (text != nullptr) {
-    for (std::string_view a : allowed) {
-      if (text->get() == a) return text->get();
+  if (node == nullptr) return 0;
+  if (const auto* text = node->as_string()) {
+    for (std::size_t i = 0; i < allowed.size(); ++i) {
+      if (text->get() == allowed[i]) return i;
     }
   }
   problem(key_name(key) + ": " + show(*node) + " is not allowed; expected one of " + options +
           where(*node));
-  return fallback;
+  return 0;
 }
 
 std::vector<double> ConfigReader::numbers(std::string_view key, double min, double max,
@@ -200,7 +253,9 @@ ConfigReader ConfigReader::table(std::string_view key) {
   if (node != nullptr && sub == nullptr) {
     problem(key_name(key) + ": " + show(*node) + " given; expected a table" + where(*node));
   }
-  return ConfigReader(sub, key_name(key), *problems_);
+  ConfigReader reader(sub, key_name(key), *problems_);
+  reader.name_files_ = name_files_;
+  return reader;
 }
 
 std::vector<ConfigReader> ConfigReader::tables(std::string_view key, std::size_t min_count) {
@@ -220,6 +275,7 @@ std::vector<ConfigReader> ConfigReader::tables(std::string_view key, std::size_t
   for (std::size_t i = 0; i < array->size(); ++i) {
     out.emplace_back((*array)[i].as_table(), key_name(key) + "[" + std::to_string(i) + "]",
                      *problems_);
+    out.back().name_files_ = name_files_;
   }
   return out;
 }
@@ -227,10 +283,19 @@ std::vector<ConfigReader> ConfigReader::tables(std::string_view key, std::size_t
 void ConfigReader::reject_unknown_keys() {
   if (table_ == nullptr) return;
   for (const auto& [key, node] : *table_) {
-    if (used_.find(key.str()) == used_.end()) {
-      problem(key_name(key.str()) + ": unknown key" + where(node) +
-              "; check its spelling against config/marsokhod.toml");
+    if (used_.find(key.str()) != used_.end()) continue;
+    std::string_view nearest;
+    std::size_t nearest_distance = 3;  // suggest only keys within two edits
+    for (const std::string& known : used_) {
+      const std::size_t d = edit_distance(key.str(), known);
+      if (d < nearest_distance && table_->get(known) == nullptr) {
+        nearest = known;
+        nearest_distance = d;
+      }
     }
+    const std::string hint = nearest.empty() ? "check its spelling against docs/parameters.md"
+                                             : "did you mean " + std::string(nearest) + "?";
+    problem(key_name(key.str()) + ": unknown key" + where(node) + "; " + hint);
   }
 }
 

@@ -1,20 +1,14 @@
 // Relations between configuration values that single ranges cannot express.
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "config/config_reader.hpp"
 #include "config/load_params.hpp"
 #include "core/tracking/clock.hpp"
 
 namespace marsokhod::config {
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
 
 void check_curve(const MotorCurveParams& c, std::size_t index, std::vector<std::string>& out) {
   const std::string name = "motor_curve[" + std::to_string(index) + "]";
@@ -28,17 +22,17 @@ void check_curve(const MotorCurveParams& c, std::size_t index, std::vector<std::
     out.push_back(name + ".duty: must run from 0 to 1 (W is defined on [0, 1], odd below 0)");
   }
   if (c.no_load_speed_radps.front() != 0.0) {
-    out.push_back(name + ".no_load_speed_radps[0]: " + fmt(c.no_load_speed_radps.front()) +
+    out.push_back(name + ".no_load_speed_radps[0]: " + show_number(c.no_load_speed_radps.front()) +
                   "; W(0) must be 0");
   }
   for (std::size_t i = 1; i < c.duty.size(); ++i) {
     if (!(c.duty[i] > c.duty[i - 1])) {
-      out.push_back(name + ".duty[" + std::to_string(i) + "]: " + fmt(c.duty[i]) +
+      out.push_back(name + ".duty[" + std::to_string(i) + "]: " + show_number(c.duty[i]) +
                     " does not increase; duty must be strictly increasing");
     }
     if (!(c.no_load_speed_radps[i] > c.no_load_speed_radps[i - 1])) {
-      out.push_back(name + ".no_load_speed_radps[" + std::to_string(i) + "]: " +
-                    fmt(c.no_load_speed_radps[i]) +
+      out.push_back(name + ".no_load_speed_radps[" + std::to_string(i) +
+                    "]: " + show_number(c.no_load_speed_radps[i]) +
                     " does not increase; W must be strictly increasing to be invertible");
     }
   }
@@ -64,31 +58,32 @@ std::vector<std::string> consistency_problems(const Params& p) {
   std::vector<std::string> out;
   const auto& g = p.geometry;
   if (!(g.joint_to_exterior_axle_m < g.center_axle_to_joint_m)) {
-    out.push_back("geometry.joint_to_exterior_axle_m: " + fmt(g.joint_to_exterior_axle_m) +
-                  " must be below center_axle_to_joint_m (" + fmt(g.center_axle_to_joint_m) +
+    out.push_back("geometry.joint_to_exterior_axle_m: " + show_number(g.joint_to_exterior_axle_m) +
+                  " must be below center_axle_to_joint_m (" +
+                  show_number(g.center_axle_to_joint_m) +
                   ") for the joints to stand vertical at acos(a/b)");
   }
   const double overflow_s = tracking::clock_overflow_period_s(p.cycle.con);
   if (!(p.cycle.period_s < overflow_s)) {
-    out.push_back("cycle.period_s: " + fmt(p.cycle.period_s) + " s is not below T(con = " +
-                  std::to_string(p.cycle.con) + ") = " + fmt(overflow_s) +
+    out.push_back("cycle.period_s: " + show_number(p.cycle.period_s) + " s is not below T(con = " +
+                  std::to_string(p.cycle.con) + ") = " + show_number(overflow_s) +
                   " s, so (3.2) cannot track tim overflows; raise cycle.con");
   }
   const auto& j = p.joints;
   if (!(j.front_min_rad < j.front_max_rad)) {
-    out.push_back("joints.front_min_rad: " + fmt(j.front_min_rad) +
-                  " must be below joints.front_max_rad (" + fmt(j.front_max_rad) + ")");
+    out.push_back("joints.front_min_rad: " + show_number(j.front_min_rad) +
+                  " must be below joints.front_max_rad (" + show_number(j.front_max_rad) + ")");
   }
   if (!(j.rear_min_rad < j.rear_max_rad)) {
-    out.push_back("joints.rear_min_rad: " + fmt(j.rear_min_rad) +
-                  " must be below joints.rear_max_rad (" + fmt(j.rear_max_rad) + ")");
+    out.push_back("joints.rear_min_rad: " + show_number(j.rear_min_rad) +
+                  " must be below joints.rear_max_rad (" + show_number(j.rear_max_rad) + ")");
   }
   for (std::size_t i = 0; i < p.motor_curves.size(); ++i) {
     check_curve(p.motor_curves[i], i, out);
     for (std::size_t k = 0; k < i; ++k) {
       if (p.motor_curves[k].icr == p.motor_curves[i].icr) {
-        out.push_back("motor_curve[" + std::to_string(i) + "].icr: " +
-                      std::to_string(p.motor_curves[i].icr) + " is given twice");
+        out.push_back("motor_curve[" + std::to_string(i) +
+                      "].icr: " + std::to_string(p.motor_curves[i].icr) + " is given twice");
       }
     }
   }
@@ -97,8 +92,9 @@ std::vector<std::string> consistency_problems(const Params& p) {
                   " has no [[motor_curve]] with that icr; add one (calibrate motor-curve)");
   }
   if (!has_response(p)) {
-    out.push_back("cycle: no [[response]] for period_s " + fmt(p.cycle.period_s) + " (±0.001) and con " +
-                  std::to_string(p.cycle.con) + "; add one (calibrate response)");
+    out.push_back("cycle: no [[response]] for period_s " + show_number(p.cycle.period_s) +
+                  " (±0.001) and con " + std::to_string(p.cycle.con) +
+                  "; add one (calibrate response)");
   }
   for (std::size_t i = 0; i < 3; ++i) {
     const auto& a = p.sensors.accelerometer[i];

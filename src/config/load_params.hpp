@@ -1,6 +1,8 @@
-// Reading config/marsokhod.toml into const Params, validated once. A missing key, a wrong type,
-// an out-of-range value, an unknown key or an inconsistent pair of values is a ConfigError that
-// lists every problem, each naming the key, the value and what is allowed.
+// Reading config/marsokhod.toml into the const Configuration (the rover's Params and the
+// console's settings), validated once by the parameter schema (param_schema.hpp). A missing key, a
+// wrong type, an out-of-range value, an unknown key or an inconsistent pair of values is a
+// ConfigError that lists every problem, each naming the key, the value and what is allowed, with
+// FILE:LINE where the file gives one.
 #pragma once
 
 #include <filesystem>
@@ -9,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "config/configuration.hpp"
 #include "core/params.hpp"
 
 namespace marsokhod::config {
@@ -23,9 +26,12 @@ class ConfigError : public std::runtime_error {
 };
 
 // Parses TOML text; `source` names it in messages (a file name, or "<string>").
+Configuration parse_configuration(std::string_view toml_text,
+                                  const std::string& source = "<string>");
 Params parse_params(std::string_view toml_text, const std::string& source = "<string>");
 
 // Reads and parses a file; a missing or unreadable file is a ConfigError too.
+Configuration load_configuration(const std::filesystem::path& file);
 Params load_params(const std::filesystem::path& file);
 
 // Checks relations between values that single ranges cannot (h < T(con), ordered joint bounds,

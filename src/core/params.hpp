@@ -1,8 +1,10 @@
-// Configuration of the rover: const after loading and validation (src/config/ reads it from
-// config/marsokhod.toml). Every field carries its unit in its name and its source in the thesis
-// ("Mobility and Autonomous Reconfiguration of Marsokhod", 2008) in a comment. The defaults here
-// are the thesis' values so that pure code and its tests can build Params without a file; the
-// TOML file is still the one source operators edit, and the loader requires every key.
+// Configuration of the rover: const after loading and validation. Every field carries its unit in
+// its name and its symbol or source in the thesis ("Mobility and Autonomous Reconfiguration of
+// Marsokhod", 2008) in a comment. Its TOML key, type, range, source and meaning are one row of
+// the parameter schema (src/config/param_schema.cpp), which drives the loader and generates
+// docs/parameters.md. The defaults here are the thesis' values so that pure code and its tests
+// can build Params without a file; config/marsokhod.toml is still the one file operators edit,
+// every key is required, and a test holds its values equal to these defaults.
 #pragma once
 
 #include <array>
@@ -185,22 +187,6 @@ struct SafetyParams {
   int missed_responses_limit = 3;          // consecutive missing responses ⇒ fault, rover stopped
 };
 
-// The operator console's link (src/link): command-line options override these.
-struct ConsoleParams {
-  std::string listen = "127.0.0.1:8080";  // ADDR:PORT of the HTTP/WebSocket server
-  std::string token;                      // empty: a fresh random token at every start
-  double status_rate_hz = 20.0;           // status messages per second to each console
-  std::vector<std::string> allowed_hosts;    // Host names served besides the listen address
-  std::vector<std::string> allowed_origins;  // page origins that may open the WebSocket
-};
-
-// Where the calibrated values came from (config/calibration.hpp): not read from the
-// configuration file; the loader fills it in when a calibration file is applied.
-struct CalibrationSource {
-  std::string file;                     // empty: the configuration's nominal values
-  std::vector<std::string> procedures;  // the procedures it holds, e.g. "voltage"
-};
-
 struct Params {
   GeometryParams geometry;
   CycleParams cycle;
@@ -226,8 +212,6 @@ struct Params {
   GaitParams gaits;
   BehaviourParams behaviours;
   SafetyParams safety;
-  ConsoleParams console;
-  CalibrationSource calibration;
 };
 
 }  // namespace marsokhod

@@ -31,6 +31,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/configuration.hpp"
 #include "core/params.hpp"
 #include "link/control_arbiter.hpp"
 #include "link/listen_address.hpp"
@@ -48,6 +49,7 @@ struct ServerOptions {
   double idle_timeout_s = 10.0;        // a WebSocket silent this long (pings unanswered) is closed
   std::vector<std::string> allowed_hosts;    // Host names served besides the listen address
   std::vector<std::string> allowed_origins;  // WebSocket origins besides the server's own
+  config::CalibrationSource calibration;     // the driver's calibration file, told in `hello`
   std::size_t max_connections = 48;    // HTTP and WebSocket at once, handshakes included
   double http_connection_max_s = 60.0;  // total keep-alive time of one HTTP connection
   double max_input_age_s = 0.25;       // gamepad/targets later than the console's others: dropped

@@ -183,7 +183,7 @@ ClientId ServerCore::add_client(const std::shared_ptr<WebSocketSession>& session
     ++stats_.connections;
     stats_.clients = clients_.size();
   }
-  send_to(client, hello_json(client, arbiter_.controller(), params_.calibration));
+  send_to(client, hello_json(client, arbiter_.controller(), options_.calibration));
   return client;
 }
 

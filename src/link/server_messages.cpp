@@ -10,7 +10,7 @@ nlohmann::json optional_id(std::optional<ClientId> id) {
 }  // namespace
 
 nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller,
-                          const CalibrationSource& calibration) {
+                          const config::CalibrationSource& calibration) {
   return {{"type", "hello"},
           {"protocol", kProtocolVersion},
           {"client_id", client},

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/params.hpp"
+#include "config/configuration.hpp"
 #include "link/control_arbiter.hpp"
 
 namespace marsokhod::link {
@@ -20,7 +20,7 @@ inline constexpr int kProtocolVersion = 2;
 // `calibration` names the calibration file the driver loaded on top of the configuration (null
 // when it runs on the configuration's nominal values) and the procedures in it.
 nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller,
-                          const CalibrationSource& calibration = {});
+                          const config::CalibrationSource& calibration = {});
 
 // {"type":"control","controller":M|null,"read_only":bool,"lost_control":bool,"reason":"…"},
 // as `recipient` sees it: lost_control is true for the client that held control before.

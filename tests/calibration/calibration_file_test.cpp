@@ -60,14 +60,15 @@ TEST_F(CalibrationFile, WritesALoadableFileThatTheLoaderReports) {
   const fs::path file = dir_ / "calibration.toml";
   write_calibration(file, voltage_result(0.0683, -41.5), kConfig, "simulator (seed 1, tether)",
                     false);
-  const Params params = config::load_params(kConfig, file);
+  const config::Configuration loaded = config::load_configuration(kConfig, file);
+  const Params& params = loaded.params;
   EXPECT_DOUBLE_EQ(params.sensors.supply.gain, 0.0683);
   EXPECT_DOUBLE_EQ(params.sensors.supply.offset, -41.5);
-  EXPECT_EQ(params.calibration.file, file.string());
-  EXPECT_EQ(params.calibration.procedures, std::vector<std::string>{"voltage"});
+  EXPECT_EQ(loaded.calibration.file, file.string());
+  EXPECT_EQ(loaded.calibration.procedures, std::vector<std::string>{"voltage"});
   // Everything else is the configuration's.
-  const Params nominal = config::load_params(kConfig);
-  EXPECT_EQ(params.motors.scale, nominal.motors.scale);
+  const config::Configuration nominal = config::load_configuration(kConfig);
+  EXPECT_EQ(params.motors.scale, nominal.params.motors.scale);
   EXPECT_TRUE(nominal.calibration.file.empty());
   const toml::table written = config::read_toml_file(file);
   EXPECT_EQ(written["calibration"]["voltage"]["source"].value_or(std::string()),
@@ -83,13 +84,14 @@ TEST_F(CalibrationFile, NeverOverwritesWithoutForceAndKeepsOtherProcedures) {
   write_calibration(file, curve_result(511, 2.8), kConfig, "sim", true);
   write_calibration(file, curve_result(1023, 2.9), kConfig, "sim", true);
   write_calibration(file, curve_result(511, 2.7), kConfig, "sim", true);  // replaces icr 511
-  const Params params = config::load_params(kConfig, file);
+  const config::Configuration loaded = config::load_configuration(kConfig, file);
+  const Params& params = loaded.params;
   EXPECT_DOUBLE_EQ(params.sensors.supply.gain, 0.0683);  // kept
   ASSERT_EQ(params.motor_curves.size(), 2U);
   for (const MotorCurveParams& c : params.motor_curves) {
     EXPECT_DOUBLE_EQ(c.no_load_speed_radps.back(), c.icr == 511 ? 2.7 : 2.9);
   }
-  EXPECT_EQ(params.calibration.procedures.size(), 2U);
+  EXPECT_EQ(loaded.calibration.procedures.size(), 2U);
 }
 
 TEST_F(CalibrationFile, RefusesPoorFitsAndValuesTheConfigurationRejects) {

@@ -110,7 +110,7 @@ TEST(LoadParams, ShippedFileMatchesTheThesisDefaults) {
 }
 
 TEST(LoadParams, ConsoleSection) {
-  const Params p = load_params(kShippedFile);
+  const Configuration p = load_configuration(kShippedFile);
   EXPECT_EQ(p.console.listen, "127.0.0.1:8080");
   EXPECT_EQ(p.console.token, "");
   EXPECT_EQ(p.console.status_rate_hz, 20.0);
@@ -118,7 +118,7 @@ TEST(LoadParams, ConsoleSection) {
   EXPECT_TRUE(p.console.allowed_origins.empty());
   const std::string e = problem_of(with_value("[console]", "token", "42"));
   EXPECT_NE(e.find("console.token: 42 is not a string"), std::string::npos) << e;
-  const Params named = parse_params(
+  const Configuration named = parse_configuration(
       with_value("[console]", "allowed_hosts", R"(["rover.local", "10.0.0.7"])"), "test.toml");
   EXPECT_EQ(named.console.allowed_hosts, (std::vector<std::string>{"rover.local", "10.0.0.7"}));
   const std::string not_text = problem_of(with_value("[console]", "allowed_origins", "[1]"));
@@ -155,7 +155,7 @@ TEST(LoadParams, WrongTypeIsNamedWithTheValue) {
   EXPECT_NE(e.find("cycle.con: \"zero\" is not an integer; expected an integer in [0, 255]"),
             std::string::npos)
       << e;
-  EXPECT_NE(e.find("(line "), std::string::npos) << e;
+  EXPECT_NE(e.find("(test.toml:"), std::string::npos) << e;
 }
 
 TEST(LoadParams, OutOfRangeValueIsNamedWithTheRange) {

@@ -13,7 +13,7 @@ TEST(ServerMessages, HelloSaysWhoHoldsControlAndWhichCalibrationTheDriverLoaded)
                     "calibration":{"file":null,"procedures":[]}})"));
   EXPECT_EQ(hello_json(3, 1)["controller"], 1);
   const nlohmann::json calibrated =
-      hello_json(3, 1, CalibrationSource{"rover7.toml", {"voltage", "motor-scale"}});
+      hello_json(3, 1, config::CalibrationSource{"rover7.toml", {"voltage", "motor-scale"}});
   EXPECT_EQ(calibrated["calibration"]["file"], "rover7.toml");
   EXPECT_EQ(calibrated["calibration"]["procedures"], nlohmann::json({"voltage", "motor-scale"}));
 }

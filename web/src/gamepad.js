@@ -2,15 +2,27 @@
 // mapping's first 4 axes and 17 buttons (docs/gamepad.md). The server applies the dead zone and
 // the map of Remark 5.7; the console only reads and forwards.
 
+/** @typedef {import('./protocol').GamepadReading} GamepadReading */
+/** @typedef {import('./protocol').GamepadInput} GamepadInput */
+
+/**
+ * What the console reads from a pad: Gamepad's fields, or a test's stand-in whose buttons may be
+ * plain numbers.
+ * @typedef {{ id?: string, mapping: string, connected?: boolean,
+ *   axes: readonly number[], buttons: readonly (GamepadButton | number)[] }} PadLike
+ */
+
 export const AXIS_COUNT = 4;
 export const BUTTON_COUNT = 17;
 
+/** @returns {GamepadReading} */
 export function neutralReading() {
   return { axes: new Array(AXIS_COUNT).fill(0), buttons: new Array(BUTTON_COUNT).fill(false) };
 }
 
 // A pad's axes can overshoot ±1 by rounding; the server rejects anything beyond, so clamp. A
 // non-finite axis is a broken reading: send it as centered rather than let the stick run away.
+/** @param {number} value */
 function cleanAxis(value) {
   if (!Number.isFinite(value)) return 0;
   return Math.max(-1, Math.min(1, value));
@@ -18,6 +30,11 @@ function cleanAxis(value) {
 
 // The first connected pad in the standard mapping, or null. Pads in another mapping have axes
 // and buttons in vendor order, which the server's map would misread.
+/**
+ * @template {PadLike} P
+ * @param {readonly (P | null)[] | null | undefined} pads
+ * @returns {P | null}
+ */
 export function firstStandardPad(pads) {
   for (const pad of pads ?? []) {
     if (pad && pad.connected !== false && pad.mapping === 'standard') return pad;
@@ -25,6 +42,10 @@ export function firstStandardPad(pads) {
   return null;
 }
 
+/**
+ * @param {PadLike} pad
+ * @returns {GamepadReading}
+ */
 export function readPad(pad) {
   const reading = neutralReading();
   for (let i = 0; i < AXIS_COUNT && i < pad.axes.length; ++i) reading.axes[i] = cleanAxis(pad.axes[i]);
@@ -36,6 +57,10 @@ export function readPad(pad) {
 }
 
 // Polls navigator.getGamepads(); returns {pad, reading} or null when no standard pad is there.
+/**
+ * @param {{ getGamepads?: () => (Gamepad | null)[] }} nav
+ * @returns {{ pad: Gamepad, reading: GamepadReading } | null}
+ */
 export function pollGamepad(nav = navigator) {
   if (typeof nav.getGamepads !== 'function') return null;
   const pad = firstStandardPad(Array.from(nav.getGamepads()));
@@ -43,6 +68,11 @@ export function pollGamepad(nav = navigator) {
 }
 
 // The gamepad and the keyboard together: a key's axis wins where it is deflected, buttons add.
+/**
+ * @param {GamepadReading | null} pad
+ * @param {GamepadReading} keys
+ * @returns {GamepadReading}
+ */
 export function mergeReadings(pad, keys) {
   if (!pad) return keys;
   return {
@@ -51,6 +81,10 @@ export function mergeReadings(pad, keys) {
   };
 }
 
+/**
+ * @param {GamepadReading} reading
+ * @returns {GamepadInput}
+ */
 export function gamepadMessage(reading) {
   return { type: 'gamepad', axes: reading.axes.slice(), buttons: reading.buttons.slice() };
 }

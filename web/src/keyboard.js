@@ -4,9 +4,12 @@
 
 import { neutralReading } from './gamepad.js';
 
+/** @typedef {import('./protocol').GamepadReading} GamepadReading */
+
 const LEFT_X = 0, LEFT_Y = 1, RIGHT_X = 2, RIGHT_Y = 3;
 
 // code → [axis, direction]
+/** @type {Record<string, [number, number]>} */
 const AXIS_KEYS = {
   KeyW: [LEFT_Y, -1],     // stick up = forward
   KeyS: [LEFT_Y, +1],
@@ -19,6 +22,7 @@ const AXIS_KEYS = {
 };
 
 // code → standard-mapping button index
+/** @type {Record<string, number>} */
 const BUTTON_KEYS = {
   KeyQ: 4,     // LB: contract the front joint
   KeyZ: 6,     // LT: extend the front joint
@@ -38,6 +42,11 @@ const HALF_DEFLECTION = 0.5;
 export const KEY_MAP_CODES = [...Object.keys(AXIS_KEYS), ...Object.keys(BUTTON_KEYS)];
 
 // The reading for a set of held key codes.
+/**
+ * @param {Iterable<string>} held KeyboardEvent.code of each key held
+ * @param {boolean} shift
+ * @returns {GamepadReading}
+ */
 export function keyboardReading(held, shift) {
   const reading = neutralReading();
   const scale = shift ? HALF_DEFLECTION : 1;
@@ -54,13 +63,19 @@ export function keyboardReading(held, shift) {
   return reading;
 }
 
+/** @param {EventTarget | null} target */
 function isFormField(target) {
   return target instanceof HTMLElement &&
     (target.isContentEditable || ['INPUT', 'SELECT', 'TEXTAREA'].includes(target.tagName));
 }
 
 export class Keyboard {
+  /**
+   * @param {Window} target
+   * @param {{ onStop: () => void }} handlers
+   */
   constructor(target, { onStop }) {
+    /** @type {Set<string>} */
     this.held = new Set();
     this.shift = false;
     target.addEventListener('keydown', (e) => this.down(e, onStop), true);
@@ -71,6 +86,10 @@ export class Keyboard {
     document.addEventListener('visibilitychange', () => this.clear());
   }
 
+  /**
+   * @param {KeyboardEvent} event
+   * @param {() => void} onStop
+   */
   down(event, onStop) {
     if (event.code === 'Space') {
       // Always STOP, also with the focus on a button (whose own activation by space is cancelled).
@@ -86,6 +105,7 @@ export class Keyboard {
     }
   }
 
+  /** @param {KeyboardEvent} event */
   up(event) {
     if (event.code === 'Space') {
       event.preventDefault();

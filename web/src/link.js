@@ -13,6 +13,23 @@
 // cookie. Gamepad and targets messages carry `seq` (from 1 on each connection) and `sent_ms`, so
 // that the server can drop readings held up in a network stall.
 
+/** @typedef {import('./protocol').ConsoleMessage} ConsoleMessage */
+/** @typedef {import('./protocol').OperatorInput} OperatorInput */
+/** @typedef {import('./protocol').ServerMessage} ServerMessage */
+/** @typedef {import('./protocol').HelloMessage} HelloMessage */
+/** @typedef {import('./protocol').ControlMessage} ControlMessage */
+/** @typedef {import('./protocol').CalibrationInfo} CalibrationInfo */
+/** @typedef {import('./protocol').Status} Status */
+
+/** @typedef {'connecting' | 'read-only' | 'in-control' | 'disconnected'} LinkState */
+
+/**
+ * Each event's `detail`.
+ * @typedef {{ state: { state: LinkState }, hello: { calibration: CalibrationInfo | null },
+ *   control: { message: ControlMessage }, stopped: { by: number, reason: string },
+ *   status: { status: Status }, error: { text: string }, pong: { rtt_ms: number } }} LinkEvents
+ */
+
 const RETRY_FIRST_MS = 500;
 const RETRY_MAX_MS = 5000;
 const PING_PERIOD_MS = 2000;
@@ -23,6 +40,7 @@ const READ_ONLY_ERROR = 'read-only: take control first';
 
 // ws(s)://host/ws next to the page, so that a console served under a path prefix (a reverse
 // proxy) still finds its server.
+/** @param {Location | URL} location */
 export function websocketUrl(location) {
   const url = new URL('ws', location.href);
   url.protocol = location.protocol === 'https:' ? 'wss:' : 'ws:';
@@ -32,6 +50,7 @@ export function websocketUrl(location) {
 }
 
 // The page's address without its token (other query parameters and the fragment stay).
+/** @param {string} href */
 export function addressWithoutToken(href) {
   const url = new URL(href);
   url.searchParams.delete('token');
@@ -40,6 +59,11 @@ export function addressWithoutToken(href) {
 
 // POST /session next to the page with the token: the server answers with the session cookie.
 // Resolves to null on success, else to what went wrong.
+/**
+ * @param {Location | URL} location
+ * @param {string} token
+ * @returns {Promise<string | null>}
+ */
 export async function exchangeToken(location, token) {
   let response;
   try {
@@ -47,25 +71,40 @@ export async function exchangeToken(location, token) {
       method: 'POST', headers: { Authorization: `Bearer ${token}` }, credentials: 'same-origin',
     });
   } catch (err) {
-    return `cannot reach the server: ${err.message}`;
+    return `cannot reach the server: ${errorText(err)}`;
   }
   if (response.ok) return null;
   const text = (await response.text()).trim();
   return `the server refused the token (HTTP ${response.status}): ${text}`;
 }
 
+/** @param {unknown} err */
+function errorText(err) {
+  return err instanceof Error ? err.message : String(err);
+}
+
 export class Link extends EventTarget {
+  /** @param {string} url */
   constructor(url) {
     super();
     this.url = url;
+    /** @type {LinkState} */
     this.state = 'connecting';
+    /** @type {number | null} */
     this.clientId = null;
+    /** @type {number | null} */
     this.controller = null;
+    /** @type {WebSocket | null} */
     this.socket = null;
     this.retryMs = RETRY_FIRST_MS;
-    this.retryTimer = null;
-    this.pingTimer = null;
+    /** @type {ReturnType<typeof setTimeout> | undefined} */
+    this.retryTimer = undefined;
+    /** @type {ReturnType<typeof setInterval> | undefined} */
+    this.pingTimer = undefined;
+    /** @type {number | null} */
     this.pingSentAt = null;
+    /** @type {string | null} */
+    this.lastError = null;
     this.everOpened = false;
     this.closedByUser = false;
     this.lostControlAt = -Infinity;
@@ -79,7 +118,7 @@ export class Link extends EventTarget {
     try {
       socket = new WebSocket(this.url);
     } catch (err) {
-      this.reportError(`cannot open the WebSocket ${this.url}: ${err.message}`);
+      this.reportError(`cannot open the WebSocket ${this.url}: ${errorText(err)}`);
       this.scheduleRetry();
       return;
     }
@@ -126,6 +165,7 @@ export class Link extends EventTarget {
   }
 
   // True when the message was handed to the socket.
+  /** @param {ConsoleMessage} message */
   send(message) {
     if (!this.socket || this.socket.readyState !== WebSocket.OPEN) return false;
     this.socket.send(JSON.stringify(message));
@@ -133,6 +173,7 @@ export class Link extends EventTarget {
   }
 
   // A gamepad or targets message, stamped with its place in the stream and the time it left.
+  /** @param {OperatorInput} message */
   sendInput(message) {
     const sentMs = performance.timeOrigin + performance.now();  // monotonic, unlike Date.now()
     if (!this.send({ ...message, seq: this.seq + 1, sent_ms: sentMs })) return false;
@@ -152,7 +193,11 @@ export class Link extends EventTarget {
     if (this.send({ type: 'ping' })) this.pingSentAt = performance.now();
   }
 
+  // The server's JSON is taken to be the protocol's shapes; fields shown to people still go
+  // through String(), and unknown types are ignored.
+  /** @param {string} text */
   receive(text) {
+    /** @type {ServerMessage} */
     let message;
     try {
       message = JSON.parse(text);
@@ -192,27 +237,46 @@ export class Link extends EventTarget {
     }
   }
 
+  /** @param {HelloMessage | ControlMessage} message */
   applyControl(message) {
     this.controller = message.controller ?? null;
-    if (message.lost_control) {
+    if ('lost_control' in message && message.lost_control) {
       this.lostControlAt = performance.now();
       this.reportError(message.reason ? `lost control: ${message.reason}` : 'lost control');
     }
     this.setState(message.read_only ? 'read-only' : 'in-control');
   }
 
+  /** @param {LinkState} state */
   setState(state) {
     if (state === this.state) return;
     this.state = state;
     this.emit('state', { state });
   }
 
+  /** @param {string} text */
   reportError(text) {
     this.lastError = text;
     this.emit('error', { text });
   }
 
+  /**
+   * @template {keyof LinkEvents} K
+   * @param {K} type
+   * @param {LinkEvents[K]} detail
+   */
   emit(type, detail) {
     this.dispatchEvent(new CustomEvent(type, { detail }));
+  }
+
+  /**
+   * Calls `handler` with the detail of every `type` event.
+   * @template {keyof LinkEvents} K
+   * @param {K} type
+   * @param {(detail: LinkEvents[K]) => void} handler
+   */
+  on(type, handler) {
+    // Every event of these types comes from emit(): a CustomEvent with that detail.
+    this.addEventListener(type, (event) => handler(/** @type {CustomEvent<LinkEvents[K]>} */ (event).detail));
   }
 }

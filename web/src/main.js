@@ -10,19 +10,26 @@ import { StatusPanel } from './status.js';
 import { Plots } from './plots.js';
 import { RoverView } from './view3d.js';
 import { ConfigPanel } from './config.js';
+import { element } from './dom.js';
+
+/** @typedef {import('./protocol').GamepadReading} GamepadReading */
+/** @typedef {import('./link.js').LinkState} LinkState */
 
 const SEND_PERIOD_MS = 50;  // 20 Hz, ten messages within the driver's 0.5 s timeout
 const BUTTON_NAMES = ['A', 'B', 'X', 'Y', 'LB', 'RB', 'LT', 'RT', 'back', 'start', 'LS', 'RS',
   'up', 'down', 'left', 'right', 'home'];
 
-const $ = (id) => document.getElementById(id);
+/** @param {string} id */
+const $ = (id) => element(document, id, HTMLElement);
+/** @param {string} id */
+const button = (id) => element(document, id, HTMLButtonElement);
 
 const token = new URLSearchParams(location.search).get('token');
 const link = new Link(websocketUrl(location));
 const statusPanel = new StatusPanel(document);
 const plots = new Plots($('plot-area'));
 const view = new RoverView($('view3d'));
-const config = new ConfigPanel($('config-form'), {
+const config = new ConfigPanel(element(document, 'config-form', HTMLFormElement), {
   send: (message) => link.send(message),
   clearFaults: () => link.send({ type: 'clear_faults' }),
 });
@@ -37,6 +44,7 @@ window.marsokhod = { link, view, status: null };
 let stopLatched = false;
 const DEFLECTED = 0.1;  // the server's dead zone: less than this is no input
 
+/** @param {GamepadReading} reading */
 function isNeutral(reading) {
   return reading.axes.every((v) => Math.abs(v) < DEFLECTED) && !reading.buttons.some(Boolean);
 }
@@ -48,6 +56,7 @@ function stop() {
 
 // The driver holds a stop until the controller's input is neutral (docs/operator-protocol.md):
 // the banner says who stopped and why until the status says the rover is re-armed.
+/** @param {string} reason */
 function showStopBanner(reason) {
   const banner = $('stop-banner');
   banner.textContent = `STOPPED: ${reason}. The rover stays stopped until the controlling ` +
@@ -55,6 +64,7 @@ function showStopBanner(reason) {
   banner.hidden = false;
 }
 
+/** @param {string} text */
 function showError(text) {
   const box = $('link-error');
   box.textContent = `${new Date().toLocaleTimeString()}  ${text}`;
@@ -62,6 +72,7 @@ function showError(text) {
 }
 
 function showLinkState() {
+  /** @type {Record<LinkState, string>} */
   const labels = {
     connecting: 'connecting…',
     'read-only': 'connected, read-only',
@@ -78,24 +89,22 @@ function showLinkState() {
   element.textContent = text;
   element.dataset.state = link.state;
   const connected = link.state === 'read-only' || link.state === 'in-control';
-  $('take-control').disabled = !connected || link.inControl;
-  $('release-control').disabled = !link.inControl;
+  button('take-control').disabled = !connected || link.inControl;
+  button('release-control').disabled = !link.inControl;
   config.setEnabled(link.inControl);
 }
 
-link.addEventListener('state', showLinkState);
-link.addEventListener('hello', (e) => {
-  const c = e.detail.calibration;
+link.on('state', showLinkState);
+link.on('hello', ({ calibration: c }) => {
   $('calibration').textContent = c && c.file
     ? `calibration: ${c.file} (${c.procedures.join(', ') || 'no procedures'})`
     : 'calibration: none (nominal configuration)';
 });
-link.addEventListener('control', showLinkState);
-link.addEventListener('stopped', (e) => showStopBanner(e.detail.reason));
-link.addEventListener('error', (e) => showError(e.detail.text));
-link.addEventListener('pong', (e) => { $('link-state').title = `round trip ${e.detail.rtt_ms.toFixed(0)} ms`; });
-link.addEventListener('status', (e) => {
-  const status = e.detail.status;
+link.on('control', showLinkState);
+link.on('stopped', ({ reason }) => showStopBanner(reason));
+link.on('error', ({ text }) => showError(text));
+link.on('pong', ({ rtt_ms }) => { $('link-state').title = `round trip ${rtt_ms.toFixed(0)} ms`; });
+link.on('status', ({ status }) => {
   window.marsokhod.status = status;
   statusPanel.update(status);
   if (status.stop_latched) showStopBanner(status.stop_reason);
@@ -110,6 +119,7 @@ $('release-control').addEventListener('click', () => link.releaseControl());
 $('stop').addEventListener('click', stop);
 
 // The operator's reading: the first standard-mapping gamepad, with the keyboard on top.
+/** @type {string | null} */
 let padPresent = null;
 function currentReading() {
   const polled = pollGamepad();
@@ -121,7 +131,13 @@ function currentReading() {
   return mergeReadings(polled?.reading ?? null, keyboard.reading());
 }
 
+/** @param {GamepadReading} reading */
 function showReading(reading) {
+  /**
+   * @param {HTMLElement} dot
+   * @param {number} x
+   * @param {number} y
+   */
   const place = (dot, x, y) => {
     dot.style.left = `${50 + 45 * x}%`;
     dot.style.top = `${50 + 45 * y}%`;
@@ -132,6 +148,7 @@ function showReading(reading) {
   $('buttons-pressed').textContent = `buttons: ${pressed.length ? pressed.join(' ') : 'none'}`;
 }
 
+/** @param {number} now */
 function frame(now) {
   showReading(currentReading());
   plots.draw(now);
@@ -174,7 +191,7 @@ async function start() {
     }
   }
   if (!token) {
-    link.addEventListener('error', () => {
+    link.on('error', () => {
       if (!link.everOpened) {
         showError('no token in the page address and no session: open the address the server ' +
           'printed, http://HOST:PORT/?token=…');

@@ -5,16 +5,32 @@ import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import { MOTORS } from './status.js';
 
+/** @typedef {import('./protocol').Status} Status */
+/** @typedef {import('./protocol').MotorName} MotorName */
+/** @typedef {import('./protocol').StatusNumber} StatusNumber */
+
+/**
+ * One chart: its series, and the value of each for a status (null or undefined: a gap).
+ * @typedef {{ title: string, unit: string, series: uPlot.Series[],
+ *   values: (s: Status) => (StatusNumber | undefined)[], range?: uPlot.Range.MinMax,
+ *   secondAxis?: string }} Chart
+ */
+
 const WINDOW_S = 30;
 const REDRAW_MS = 100;
 const HEIGHT_PX = 170;
 const COLORS = ['#e6194b', '#3cb44b', '#4363d8', '#f58231', '#911eb4', '#42a5b5', '#9a6324', '#808000'];
 const WHEELS = MOTORS.slice(0, 6);
 
+/**
+ * @param {MotorName[]} names
+ * @returns {uPlot.Series[]}
+ */
 const motorSeries = (names) => names.map((name) => ({
   label: name, stroke: COLORS[MOTORS.indexOf(name)], width: 1.5,
 }));
 
+/** @type {Chart[]} */
 const CHARTS = [
   {
     title: 'duty cycle d', unit: '',
@@ -45,15 +61,24 @@ const CHARTS = [
 ];
 
 // Non-finite (null in JSON) becomes a gap, which uPlot draws as a break in the line.
-const finiteOrNull = (v) => (typeof v === 'number' && Number.isFinite(v) ? v : null);
+const finiteOrNull = (/** @type {unknown} */ v) => (typeof v === 'number' && Number.isFinite(v) ? v : null);
 
+/**
+ * @param {Chart} chart
+ * @param {number} width
+ * @returns {uPlot.Options}
+ */
 function chartOptions(chart, width) {
+  /** @type {uPlot.Axis[]} */
   const axes = [
     { label: 'mission time [s]', size: 40 },
     { label: chart.unit, size: 50 },
   ];
   // Always the last 30 s, so that the charts line up and a fresh console fills from the right.
-  const scales = { x: { time: false, range: (u, min, max) => (max == null ? [0, WINDOW_S] : [max - WINDOW_S, max]) } };
+  /** @type {uPlot.Scales} */
+  const scales = {
+    x: { time: false, range: (u, min, max) => (max == null ? [0, WINDOW_S] : [max - WINDOW_S, max]) },
+  };
   if (chart.range) scales.y = { range: chart.range };
   if (chart.secondAxis) {
     scales[chart.secondAxis] = { range: [0, 1] };
@@ -70,18 +95,30 @@ function chartOptions(chart, width) {
 }
 
 export class Plots {
+  /** @param {HTMLElement} container */
   constructor(container) {
     this.container = container;
-    this.data = CHARTS.map((chart) => [[], ...chart.series.map(() => [])]);
+    // Per chart: the times, and one column of values per series.
+    /** @type {{ times: number[], values: (number | null)[][] }[]} */
+    this.data = CHARTS.map((chart) => ({ times: [], values: chart.series.map(() => []) }));
     this.plots = CHARTS.map((chart, i) => {
       const div = document.createElement('div');
       div.className = 'plot';
       container.appendChild(div);
-      return new uPlot(chartOptions(chart, this.chartWidth()), this.data[i], div);
+      return new uPlot(chartOptions(chart, this.chartWidth()), this.aligned(i), div);
     });
     this.dirty = false;
     this.lastDraw = 0;
     new ResizeObserver(() => this.resize()).observe(container);
+  }
+
+  /**
+   * Chart i's data as uPlot takes it.
+   * @param {number} i
+   * @returns {uPlot.AlignedData}
+   */
+  aligned(i) {
+    return [this.data[i].times, ...this.data[i].values];
   }
 
   chartWidth() {
@@ -95,27 +132,34 @@ export class Plots {
     for (const plot of this.plots) plot.setSize({ width, height: HEIGHT_PX });
   }
 
+  /** @param {Status} status */
   add(status) {
     const t = status.mission_time_s;
     if (typeof t !== 'number' || !Number.isFinite(t)) return;
     CHARTS.forEach((chart, i) => {
-      const columns = this.data[i];
-      const times = columns[0];
+      const { times, values } = this.data[i];
       // The driver restarted (mission time went back): start over rather than draw a zigzag.
-      if (times.length && t < times[times.length - 1]) columns.forEach((c) => { c.length = 0; });
+      if (times.length && t < times[times.length - 1]) {
+        times.length = 0;
+        values.forEach((c) => { c.length = 0; });
+      }
       times.push(t);
-      chart.values(status).forEach((v, k) => columns[k + 1].push(finiteOrNull(v)));
+      chart.values(status).forEach((v, k) => values[k].push(finiteOrNull(v)));
       let old = 0;
       while (old < times.length && times[old] < t - WINDOW_S) ++old;
-      if (old) columns.forEach((c) => c.splice(0, old));
+      if (old) {
+        times.splice(0, old);
+        values.forEach((c) => c.splice(0, old));
+      }
     });
     this.dirty = true;
   }
 
   // Called every animation frame; redraws at most every REDRAW_MS.
+  /** @param {number} now */
   draw(now) {
     if (!this.dirty || now - this.lastDraw < REDRAW_MS) return;
-    this.plots.forEach((plot, i) => plot.setData(this.data[i]));
+    this.plots.forEach((plot, i) => plot.setData(this.aligned(i)));
     this.dirty = false;
     this.lastDraw = now;
   }

@@ -10,6 +10,22 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
+/** @typedef {import('./protocol').Status} Status */
+/** @typedef {import('./protocol').MotorName} MotorName */
+/** @typedef {import('./protocol').Truth} Truth */
+
+/**
+ * The lever geometry (chassis_geometry.hpp) and the wheels' size [m].
+ * @typedef {{ joint_to_exterior_axle_m: number, center_axle_to_joint_m: number,
+ *   wheel_radius_m: number, track_width_m: number, wheel_width_m: number }} Geometry
+ */
+
+/** The rover to draw: where it stands and turns, its wheels in its own frame, their angles.
+ * @typedef {{ source: 'truth' | 'joints', position: THREE.Vector3, rotation: THREE.Euler,
+ *   wheels: THREE.Vector3[], wheelAngles: (number | null | undefined)[] }} Pose
+ */
+
+/** @type {Geometry} */
 export const GEOMETRY = {
   joint_to_exterior_axle_m: 0.145,  // a
   center_axle_to_joint_m: 0.413,    // b
@@ -18,21 +34,36 @@ export const GEOMETRY = {
   wheel_width_m: 0.15,
 };
 
+/** @type {MotorName[]} */
 const WHEELS = ['FL', 'FR', 'CL', 'CR', 'BL', 'BR'];
 const BLADES_PER_WHEEL = 12;
 const GROUND_SIZE_M = 200;
 
+/**
+ * @param {number} bend_rad
+ * @param {Geometry} [g]
+ */
 export function axleDistance(bend_rad, g = GEOMETRY) {
   const a = g.joint_to_exterior_axle_m, b = g.center_axle_to_joint_m;
   return Math.sqrt(a * a + b * b - 2 * a * b * Math.cos(bend_rad));
 }
 
+/**
+ * @param {number} axle_distance_m
+ * @param {Geometry} [g]
+ */
 export function strutElevation(axle_distance_m, g = GEOMETRY) {
   const a = g.joint_to_exterior_axle_m, b = g.center_axle_to_joint_m, c = axle_distance_m;
   return Math.acos(Math.max(-1, Math.min(1, (b * b + c * c - a * a) / (2 * b * c))));
 }
 
 // The joint above the line from the center axle to an exterior axle at (x, z) of the side view.
+/**
+ * @param {number} axle_x
+ * @param {number} axle_z
+ * @param {Geometry} [g]
+ * @returns {[number, number]}
+ */
 export function jointPosition(axle_x, axle_z, g = GEOMETRY) {
   const c = Math.hypot(axle_x, axle_z);
   const alpha = strutElevation(c, g);
@@ -44,36 +75,64 @@ export function jointPosition(axle_x, axle_z, g = GEOMETRY) {
   return [b * (Math.cos(alpha) * ux + Math.sin(alpha) * nx), b * (Math.cos(alpha) * uz + Math.sin(alpha) * nz)];
 }
 
+/**
+ * @param {unknown} v
+ * @returns {v is number}
+ */
 const finite = (v) => typeof v === 'number' && Number.isFinite(v);
+/**
+ * @param {unknown} v
+ * @param {number} n
+ * @returns {v is number[]}
+ */
 const finiteVector = (v, n) => Array.isArray(v) && v.length >= n && v.slice(0, n).every(finite);
 
 // The pose to draw, in the rover's frame (center axle at the origin) plus its place in the world.
 // `truth` keys (the simulator's GroundTruth): position_m, roll_pitch_yaw_rad, joint_angle_rad
 // (8: wheels' angles, then p6, p7), wheel_position_m (6 × [x, y, z]), wheel_angle_rad (6, optional).
+/**
+ * The pose from the simulator's truth, or null when a part of it is missing or not finite.
+ * @param {Truth | undefined} truth
+ * @param {Pose['wheelAngles']} wheelAngles
+ * @returns {Pose | null}
+ */
+function truthPose(truth, wheelAngles) {
+  const wheelPositions = truth?.wheel_position_m;
+  if (!truth || !finiteVector(truth.position_m, 3) || !finiteVector(truth.roll_pitch_yaw_rad, 3) ||
+      !Array.isArray(wheelPositions) || wheelPositions.length < 6 ||
+      !wheelPositions.every((w) => finiteVector(w, 3))) return null;
+  const position = new THREE.Vector3().fromArray(truth.position_m);
+  const [roll, pitch, yaw] = truth.roll_pitch_yaw_rad;
+  // R = Rz(yaw)·Ry(pitch)·Rx(roll): three's 'ZYX' order.
+  const rotation = new THREE.Euler(roll, pitch, yaw, 'ZYX');
+  const toLocal = new THREE.Quaternion().setFromEuler(rotation).invert();
+  const wheels = wheelPositions.slice(0, 6)
+    .map((w) => new THREE.Vector3().fromArray(w).sub(position).applyQuaternion(toLocal));
+  return { source: 'truth', position, rotation, wheels, wheelAngles };
+}
+
+/**
+ * @param {Partial<Pick<Status, 'motors' | 'truth'>>} status
+ * @param {Geometry} [g]
+ * @returns {Pose}
+ */
 export function roverPose(status, g = GEOMETRY) {
   const truth = status.truth;
-  const motor = (name) => status.motors?.[name]?.position_rad;
+  const motor = (/** @type {MotorName} */ name) => status.motors?.[name]?.position_rad;
   const joints = finiteVector(truth?.joint_angle_rad, 8) ? truth.joint_angle_rad : null;
   const p6 = joints ? joints[6] : motor('AF');
   const p7 = joints ? joints[7] : motor('AR');
-  const wheelAngles = finiteVector(truth?.wheel_angle_rad, 6) ? truth.wheel_angle_rad
+  const givenAngles = truth?.wheel_angle_rad;
+  const wheelAngles = finiteVector(givenAngles, 6) ? givenAngles
     : joints ? joints.slice(0, 6) : WHEELS.map((w) => (finite(motor(w)) ? motor(w) : 0));
+  const fromTruth = truthPose(truth, wheelAngles);
+  if (fromTruth) return fromTruth;
+
   const half = g.track_width_m / 2;
-
-  const fromTruth = truth && finiteVector(truth.position_m, 3) &&
-    finiteVector(truth.roll_pitch_yaw_rad, 3) && Array.isArray(truth.wheel_position_m) &&
-    truth.wheel_position_m.length >= 6 && truth.wheel_position_m.every((w) => finiteVector(w, 3));
-  if (fromTruth) {
-    const position = new THREE.Vector3(...truth.position_m);
-    const [roll, pitch, yaw] = truth.roll_pitch_yaw_rad;
-    // R = Rz(yaw)·Ry(pitch)·Rx(roll): three's 'ZYX' order.
-    const rotation = new THREE.Euler(roll, pitch, yaw, 'ZYX');
-    const toLocal = new THREE.Quaternion().setFromEuler(rotation).invert();
-    const wheels = truth.wheel_position_m.slice(0, 6)
-      .map((w) => new THREE.Vector3(...w).sub(position).applyQuaternion(toLocal));
-    return { source: 'truth', position, rotation, wheels, wheelAngles };
-  }
-
+  /**
+   * @param {unknown} p
+   * @param {number} sign
+   */
   const level = (p, sign) => (finite(p) ? axleDistance(sign * p, g) : Math.sqrt(
     g.center_axle_to_joint_m ** 2 - g.joint_to_exterior_axle_m ** 2));
   const front = level(p6, -1), rear = level(p7, +1);
@@ -94,6 +153,7 @@ function groundTexture() {
   const canvas = document.createElement('canvas');
   canvas.width = canvas.height = 64;
   const g = canvas.getContext('2d');
+  if (!g) throw new Error('no 2-D canvas for the ground texture');
   g.fillStyle = '#c9a77c';
   g.fillRect(0, 0, 64, 64);
   g.fillStyle = '#b8966b';
@@ -107,6 +167,10 @@ function groundTexture() {
   return texture;
 }
 
+/**
+ * @param {Geometry} g
+ * @param {Record<'wheel' | 'blade', THREE.Material>} materials
+ */
 function wheelMesh(g, materials) {
   const wheel = new THREE.Group();
   const r = g.wheel_radius_m, w = g.wheel_width_m;
@@ -127,6 +191,11 @@ function wheelMesh(g, materials) {
 }
 
 // A rod from one point to another (a strut, a lever, an axle).
+/**
+ * @param {THREE.Object3D} mesh
+ * @param {THREE.Vector3} from
+ * @param {THREE.Vector3} to
+ */
 function setRod(mesh, from, to) {
   const direction = new THREE.Vector3().subVectors(to, from);
   mesh.position.copy(from).addScaledVector(direction, 0.5);
@@ -134,135 +203,178 @@ function setRod(mesh, from, to) {
   mesh.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), direction.normalize());
 }
 
+/**
+ * @typedef {{ renderer: THREE.WebGLRenderer, scene: THREE.Scene, camera: THREE.PerspectiveCamera,
+ *   controls: OrbitControls }} Stage
+ * @typedef {{ strut: THREE.Mesh, lever: THREE.Mesh, axle: THREE.Mesh, joint: THREE.Mesh }} Lever
+ * @typedef {{ rover: THREE.Group, levers: Lever[], wheels: THREE.Group[] }} RoverModel
+ */
+
+/**
+ * The renderer, the lit scene with its ground, and the camera the operator turns; null where the
+ * browser gives no WebGL (the container then says so).
+ * @param {HTMLElement} container
+ * @param {() => void} onChange called when the operator moves the camera
+ * @returns {Stage | null}
+ */
+function createStage(container, onChange) {
+  let renderer;
+  try {
+    renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  } catch (err) {
+    const why = err instanceof Error ? err.message : String(err);
+    container.textContent = `No 3-D view: this browser gives no WebGL context (${why}).`;
+    container.classList.add('unavailable');
+    return null;
+  }
+  renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+  container.appendChild(renderer.domElement);
+
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xe8e4dc);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x8d7a66, 2.2));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+  sun.position.set(3, -2, 5);
+  scene.add(sun);
+
+  const ground = new THREE.Mesh(new THREE.PlaneGeometry(GROUND_SIZE_M, GROUND_SIZE_M),
+    new THREE.MeshLambertMaterial({ map: groundTexture() }));
+  scene.add(ground);
+
+  const camera = new THREE.PerspectiveCamera(45, 1, 0.05, 200);
+  camera.up.set(0, 0, 1);
+  camera.position.set(-1.3, -1.7, 1.0);
+  const controls = new OrbitControls(camera, renderer.domElement);
+  controls.target.set(0, 0, 0.15);
+  controls.addEventListener('change', onChange);
+  return { renderer, scene, camera, controls };
+}
+
+/**
+ * The rover's body, center axle, levers and wheels, added to `scene`.
+ * @param {THREE.Scene} scene
+ * @param {Geometry} g
+ * @returns {RoverModel}
+ */
+function buildRover(scene, g) {
+  const materials = {
+    body: new THREE.MeshStandardMaterial({ color: 0xd8d8d0, metalness: 0.2, roughness: 0.6 }),
+    rod: new THREE.MeshStandardMaterial({ color: 0x505860, metalness: 0.5, roughness: 0.4 }),
+    joint: new THREE.MeshStandardMaterial({ color: 0xc0392b }),
+    wheel: new THREE.MeshStandardMaterial({ color: 0x9aa0a6, metalness: 0.4, roughness: 0.5 }),
+    blade: new THREE.MeshStandardMaterial({ color: 0x2d3436 }),
+  };
+  const rover = new THREE.Group();
+  scene.add(rover);
+  const half = g.track_width_m / 2;
+  const bodyWidth = g.track_width_m - g.wheel_width_m - 0.1;
+  const body = new THREE.Mesh(new THREE.BoxGeometry(0.5, bodyWidth, 0.14), materials.body);
+  body.position.set(0, 0, 0.17);
+  rover.add(body);
+  const rod = (/** @type {number} */ radius) => {
+    const mesh = new THREE.Mesh(new THREE.CylinderGeometry(radius, radius, 1, 12), materials.rod);
+    rover.add(mesh);
+    return mesh;
+  };
+  setRod(rod(0.03), new THREE.Vector3(0, half - 0.08, 0), new THREE.Vector3(0, -half + 0.08, 0));
+  const levers = ['front', 'rear'].map(() => {
+    const joint = new THREE.Mesh(new THREE.CylinderGeometry(0.045, 0.045, 0.12, 20), materials.joint);
+    rover.add(joint);
+    return { strut: rod(0.03), lever: rod(0.03), axle: rod(0.04), joint };
+  });
+  const wheels = WHEELS.map(() => {
+    const wheel = wheelMesh(g, materials);
+    rover.add(wheel);
+    return wheel;
+  });
+  return { rover, levers, wheels };
+}
+
+/**
+ * Places the levers and wheels of `model` as `pose` has them.
+ * @param {RoverModel} model
+ * @param {Pose} pose
+ * @param {Geometry} g
+ */
+function placeRover(model, pose, g) {
+  const axleOf = (/** @type {number} */ left, /** @type {number} */ right) =>
+    new THREE.Vector3().addVectors(pose.wheels[left], pose.wheels[right]).multiplyScalar(0.5);
+  const ends = [axleOf(0, 1), axleOf(4, 5)];
+  const center = new THREE.Vector3(0, 0, 0);
+  ends.forEach((axle, i) => {
+    const [jx, jz] = jointPosition(axle.x, axle.z, g);
+    const joint = new THREE.Vector3(jx, axle.y, jz);
+    const parts = model.levers[i];
+    setRod(parts.strut, center, joint);
+    setRod(parts.lever, joint, axle);
+    parts.joint.position.copy(joint);
+    const left = pose.wheels[i === 0 ? 0 : 4], right = pose.wheels[i === 0 ? 1 : 5];
+    const inward = 0.08 / g.track_width_m;
+    setRod(parts.axle, left.clone().lerp(right, inward), right.clone().lerp(left, inward));
+  });
+  pose.wheels.forEach((position, i) => {
+    const holder = model.wheels[i];
+    holder.position.copy(position);
+    // The exterior axles roll about their own x (θ): orient the wheel along its axle.
+    const partner = pose.wheels[i % 2 === 0 ? i + 1 : i - 1];
+    const axis = i % 2 === 0 ? position.clone().sub(partner) : partner.clone().sub(position);
+    if (axis.lengthSq() > 1e-9) holder.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), axis.normalize());
+    // A positive wheel angle is a turn about +y: the top of the wheel moves forward.
+    const angle = pose.wheelAngles[i];
+    holder.userData.spin.rotation.y = finite(angle) ? angle : 0;
+  });
+}
+
 export class RoverView {
+  /**
+   * @param {HTMLElement} container
+   * @param {Geometry} [g]
+   */
   constructor(container, g = GEOMETRY) {
     this.container = container;
     this.g = g;
     this.dirty = true;
-    try {
-      this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-    } catch (err) {
-      container.textContent = `No 3-D view: this browser gives no WebGL context (${err.message}).`;
-      container.classList.add('unavailable');
-      return;
-    }
-    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
-    container.appendChild(this.renderer.domElement);
-
-    const scene = new THREE.Scene();
-    scene.background = new THREE.Color(0xe8e4dc);
-    this.scene = scene;
-    scene.add(new THREE.HemisphereLight(0xffffff, 0x8d7a66, 2.2));
-    const sun = new THREE.DirectionalLight(0xffffff, 1.6);
-    sun.position.set(3, -2, 5);
-    scene.add(sun);
-
-    const ground = new THREE.Mesh(new THREE.PlaneGeometry(GROUND_SIZE_M, GROUND_SIZE_M),
-      new THREE.MeshLambertMaterial({ map: groundTexture() }));
-    scene.add(ground);
-
-    this.camera = new THREE.PerspectiveCamera(45, 1, 0.05, 200);
-    this.camera.up.set(0, 0, 1);
-    this.camera.position.set(-1.3, -1.7, 1.0);
-    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
-    this.controls.target.set(0, 0, 0.15);
-    this.controls.addEventListener('change', () => { this.dirty = true; });
-
-    this.buildRover();
+    /** @type {Pose['source'] | undefined} */
+    this.source = undefined;
+    this.stage = createStage(container, () => { this.dirty = true; });
+    this.model = this.stage ? buildRover(this.stage.scene, g) : null;
+    if (!this.stage) return;
     this.update({});  // level, joints vertical, until the first status arrives
     this.resize();
     new ResizeObserver(() => this.resize()).observe(container);
   }
 
-  buildRover() {
-    const g = this.g;
-    const materials = {
-      body: new THREE.MeshStandardMaterial({ color: 0xd8d8d0, metalness: 0.2, roughness: 0.6 }),
-      rod: new THREE.MeshStandardMaterial({ color: 0x505860, metalness: 0.5, roughness: 0.4 }),
-      joint: new THREE.MeshStandardMaterial({ color: 0xc0392b }),
-      wheel: new THREE.MeshStandardMaterial({ color: 0x9aa0a6, metalness: 0.4, roughness: 0.5 }),
-      blade: new THREE.MeshStandardMaterial({ color: 0x2d3436 }),
-    };
-    const rover = new THREE.Group();
-    this.rover = rover;
-    this.scene.add(rover);
-    const half = g.track_width_m / 2;
-    const bodyWidth = g.track_width_m - g.wheel_width_m - 0.1;
-    const body = new THREE.Mesh(new THREE.BoxGeometry(0.5, bodyWidth, 0.14), materials.body);
-    body.position.set(0, 0, 0.17);
-    rover.add(body);
-    const rod = (radius) => {
-      const mesh = new THREE.Mesh(new THREE.CylinderGeometry(radius, radius, 1, 12), materials.rod);
-      rover.add(mesh);
-      return mesh;
-    };
-    this.centerAxle = rod(0.03);
-    setRod(this.centerAxle, new THREE.Vector3(0, half - 0.08, 0), new THREE.Vector3(0, -half + 0.08, 0));
-    this.levers = ['front', 'rear'].map(() => {
-      const joint = new THREE.Mesh(new THREE.CylinderGeometry(0.045, 0.045, 0.12, 20), materials.joint);
-      rover.add(joint);
-      return { strut: rod(0.03), lever: rod(0.03), axle: rod(0.04), joint };
-    });
-    this.wheels = WHEELS.map(() => {
-      const wheel = wheelMesh(g, materials);
-      rover.add(wheel);
-      return wheel;
-    });
-  }
-
+  /** @param {Partial<Pick<Status, 'motors' | 'truth'>>} status */
   update(status) {
-    if (!this.renderer) return;
+    const { stage, model } = this;
+    if (!stage || !model) return;
     const pose = roverPose(status, this.g);
-    const moved = new THREE.Vector3().subVectors(pose.position, this.rover.position);
-    this.rover.position.copy(pose.position);
-    this.rover.rotation.copy(pose.rotation);
+    const moved = new THREE.Vector3().subVectors(pose.position, model.rover.position);
+    model.rover.position.copy(pose.position);
+    model.rover.rotation.copy(pose.rotation);
     // The camera follows the rover, keeping the operator's angle and distance.
-    this.camera.position.add(moved);
-    this.controls.target.add(moved);
-    this.controls.update();
-
-    const axleOf = (left, right) => new THREE.Vector3().addVectors(pose.wheels[left], pose.wheels[right]).multiplyScalar(0.5);
-    const ends = [axleOf(0, 1), axleOf(4, 5)];
-    const center = new THREE.Vector3(0, 0, 0);
-    ends.forEach((axle, i) => {
-      const [jx, jz] = jointPosition(axle.x, axle.z, this.g);
-      const joint = new THREE.Vector3(jx, axle.y, jz);
-      const parts = this.levers[i];
-      setRod(parts.strut, center, joint);
-      setRod(parts.lever, joint, axle);
-      parts.joint.position.copy(joint);
-      const left = pose.wheels[i === 0 ? 0 : 4], right = pose.wheels[i === 0 ? 1 : 5];
-      const inward = 0.08 / this.g.track_width_m;
-      setRod(parts.axle, left.clone().lerp(right, inward), right.clone().lerp(left, inward));
-    });
-    pose.wheels.forEach((position, i) => {
-      const holder = this.wheels[i];
-      holder.position.copy(position);
-      // The exterior axles roll about their own x (θ): orient the wheel along its axle.
-      const partner = pose.wheels[i % 2 === 0 ? i + 1 : i - 1];
-      const axis = i % 2 === 0 ? position.clone().sub(partner) : partner.clone().sub(position);
-      if (axis.lengthSq() > 1e-9) holder.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), axis.normalize());
-      // A positive wheel angle is a turn about +y: the top of the wheel moves forward.
-      holder.userData.spin.rotation.y = finite(pose.wheelAngles[i]) ? pose.wheelAngles[i] : 0;
-    });
+    stage.camera.position.add(moved);
+    stage.controls.target.add(moved);
+    stage.controls.update();
+    placeRover(model, pose, this.g);
     this.source = pose.source;
     this.dirty = true;
   }
 
   resize() {
-    if (!this.renderer) return;
+    if (!this.stage) return;
     const width = Math.max(1, this.container.clientWidth);
     const height = Math.max(1, this.container.clientHeight);
-    this.renderer.setSize(width, height);
-    this.camera.aspect = width / height;
-    this.camera.updateProjectionMatrix();
+    this.stage.renderer.setSize(width, height);
+    this.stage.camera.aspect = width / height;
+    this.stage.camera.updateProjectionMatrix();
     this.dirty = true;
   }
 
   // Called every animation frame; renders only when something changed.
   draw() {
-    if (!this.renderer || !this.dirty) return;
-    this.renderer.render(this.scene, this.camera);
+    if (!this.stage || !this.dirty) return;
+    this.stage.renderer.render(this.stage.scene, this.stage.camera);
     this.dirty = false;
   }
 }

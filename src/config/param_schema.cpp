@@ -1,0 +1,357 @@
+// Every parameter of config/marsokhod.toml: its key, field, range, unit, thesis symbol and source,
+// and what it means. The loader reads and checks by this table, error messages quote its ranges,
+// and docs/parameters.md is generated from it (marsokhod-param-docs). Ranges are what the code can
+// work with, not what the thesis measured; the values themselves are in params.hpp and the file.
+#include "config/param_schema.hpp"
+
+#include <numbers>
+
+namespace marsokhod::config {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kLambdaMax = 0.999999;  // a low-pass with λ = 1 would never move
+
+constexpr ParamSpec kGeometry[] = {
+    {.key = "joint_to_exterior_axle_m", .field = field<&GeometryParams::joint_to_exterior_axle_m>,
+     .min = 0.01, .max = 1.0, .unit = "m", .symbol = "a",
+     .about = "from a joint to the exterior axle on its lever"},
+    {.key = "center_axle_to_joint_m", .field = field<&GeometryParams::center_axle_to_joint_m>,
+     .min = 0.01, .max = 2.0, .unit = "m", .symbol = "b",
+     .about = "from the center axle to a joint; must exceed a"},
+    {.key = "wheel_radius_m", .field = field<&GeometryParams::wheel_radius_m>, .min = 0.05,
+     .max = 0.5, .unit = "m", .symbol = "r",
+     .about = "wheel radius: 0.125 with the blades on solid ground, 0.115 on granules"},
+    {.key = "track_width_m", .field = field<&GeometryParams::track_width_m>, .min = 0.1, .max = 3.0,
+     .unit = "m", .source = "Quote 2.1", .about = "track width, fixed at 70 cm"},
+    {.key = "blade_inclination_rad", .field = field<&GeometryParams::blade_inclination_rad>,
+     .min = 0.0, .max = kPi / 2, .unit = "rad", .symbol = "i",
+     .about = "inclination of the blades"},
+};
+
+constexpr ParamSpec kCycle[] = {
+    {.key = "period_s", .field = field<&CycleParams::period_s>, .min = 0.001, .max = 0.5,
+     .unit = "s", .symbol = "h",
+     .about = "one communication cycle (64 Hz); must stay below T(con) = (con+1)·65536/2 MHz"},
+    {.key = "con", .field = field<&CycleParams::con>, .min = 0, .max = 255, .symbol = "con",
+     .about = "clock and velocity-estimation period register of µ0–µ7"},
+    {.key = "icr", .field = field<&CycleParams::icr>, .min = 255, .max = 2047, .symbol = "icr",
+     .about = "PWM period register: (icr+1)/8 MHz, 15.625 kHz at 511; needs its [[motor_curve]]"},
+};
+
+constexpr ParamSpec kMotors[] = {
+    {.key = "encoder_pulses_per_rev", .field = field<&MotorParams::encoder_pulses_per_rev>,
+     .min = 1, .max = 100'000'000, .source = "chapter 3.2",
+     .about = "encoder counts per turn: enc·2π/115000 rad"},
+    {.key = "max_no_load_speed_radps", .field = field<&MotorParams::max_no_load_speed_radps>,
+     .min = 0.1, .max = 100.0, .unit = "rad/s", .symbol = "w",
+     .about = "no-load speed at full duty (Maxon RE 36 at 24 V)"},
+    {.key = "nominal_supply_v", .field = field<&MotorParams::nominal_supply_v>, .min = 1.0,
+     .max = 100.0, .unit = "V", .symbol = "Ū", .source = "(4.3)",
+     .about = "the calibration voltage"},
+    {.key = "scale", .field = field<&MotorParams::scale>, .min = 0.5, .max = 1.5, .symbol = "ζ_i",
+     .source = "Procedure 4.5",
+     .about = "per motor 0…7 (FL FR CL CR BL BR AF AR): speed relative to W; ζ2, ζ5 were lost and "
+              "are the mean of the four printed wheels",
+     .calibrated = true},
+    {.key = "backlash_rad", .field = field<&MotorParams::backlash_rad>, .min = 0.0, .max = 1.0,
+     .unit = "rad", .symbol = "b", .source = "Procedure 4.1",
+     .about = "per motor: the gear's gap; front joint ≈ 3°, rear ≈ 14°, wheels neglected",
+     .calibrated = true},
+    {.key = "initial_position_rad", .field = field<&MotorParams::initial_position_rad>,
+     .min = -10.0, .max = 10.0, .unit = "rad", .symbol = "p̄⁰", .source = "Remark 3.1",
+     .about = "per motor: position at start; the joints vertical, ∓acos(a/b)"},
+};
+
+constexpr ParamSpec kMotorCurve[] = {
+    {.key = "icr", .field = field<&MotorCurveParams::icr>, .min = 255, .max = 2047, .symbol = "icr",
+     .about = "the PWM period register this table holds for", .calibrated = true},
+    {.key = "duty", .field = field<&MotorCurveParams::duty>, .min = 0.0, .max = 1.0, .min_count = 2,
+     .max_count = 256, .symbol = "d",
+     .about = "duty cycles from 0 to 1, strictly increasing", .calibrated = true},
+    {.key = "no_load_speed_radps", .field = field<&MotorCurveParams::no_load_speed_radps>,
+     .min = 0.0, .max = 100.0, .min_count = 2, .max_count = 256, .unit = "rad/s", .symbol = "W(d)",
+     .about = "no-load speed at U = Ū for each duty, from 0, strictly increasing",
+     .calibrated = true},
+};
+
+constexpr ParamSpec kResponse[] = {
+    {.key = "period_s", .field = field<&ResponseParams::period_s>, .min = 0.001, .max = 0.5,
+     .unit = "s", .symbol = "h", .about = "the cycle period this table holds for (±1 ms)",
+     .calibrated = true},
+    {.key = "con", .field = field<&ResponseParams::con>, .min = 0, .max = 255, .symbol = "con",
+     .about = "the clock register this table holds for", .calibrated = true},
+    {.key = "delta", .field = field<&ResponseParams::delta>, .min = -2.0, .max = 2.0,
+     .min_count = 1, .max_count = 256, .symbol = "δ^j", .about = "delta[j] multiplies ŵ^(k−j)",
+     .calibrated = true},
+};
+
+constexpr ParamSpec kPower[] = {
+    {.key = "duty_drop_v", .field = field<&PowerParams::duty_drop_v>, .min = 0.0, .max = 10.0,
+     .unit = "V", .symbol = "ξ", .source = "(4.5)",
+     .about = "voltage drop per unit of duty (2 × HYS1240 or 2 × HYS1250)", .calibrated = true},
+    {.key = "load_drop_v_s2_per_rad2", .field = field<&PowerParams::load_drop_v_s2_per_rad2>,
+     .min = 0.0, .max = 10.0, .unit = "V s²/rad²", .symbol = "Ξ", .source = "(4.5)",
+     .about = "voltage drop per squared load", .calibrated = true},
+    {.key = "max_drop_v", .field = field<&PowerParams::max_drop_v>, .min = 0.01, .max = 10.0,
+     .unit = "V", .symbol = "Υ", .source = "(6.3)",
+     .about = "power management keeps Ū − U below this"},
+    {.key = "brownout_v", .field = field<&PowerParams::brownout_v>, .min = 0.0, .max = 100.0,
+     .unit = "V", .source = "Field Experiment 6.2", .about = "the onboard computer rebooted here"},
+};
+
+constexpr ParamSpec kLoad[] = {
+    {.key = "gain_same_sign_radps_per_nm", .field = field<&LoadParams::gain_same_sign_radps_per_nm>,
+     .min = 1e-6, .max = 10.0, .unit = "rad/(s N m)", .symbol = "B⁺",
+     .about = "l ≈ τ·B⁺ when τd ≥ 0", .calibrated = true},
+    {.key = "gain_opposite_sign_radps_per_nm",
+     .field = field<&LoadParams::gain_opposite_sign_radps_per_nm>, .min = 1e-6, .max = 10.0,
+     .unit = "rad/(s N m)", .symbol = "B⁻", .about = "l ≈ τ·B⁻ when τd < 0", .calibrated = true},
+};
+
+constexpr ParamSpec kJoints[] = {
+    {.key = "front_min_rad", .field = field<&JointParams::front_min_rad>, .min = -kPi, .max = 0.0,
+     .unit = "rad", .symbol = "p6_min", .about = "front joint fully extended"},
+    {.key = "front_max_rad", .field = field<&JointParams::front_max_rad>, .min = -kPi, .max = 0.0,
+     .unit = "rad", .symbol = "p6_max", .about = "front joint vertical, −acos(a/b)"},
+    {.key = "rear_min_rad", .field = field<&JointParams::rear_min_rad>, .min = 0.0, .max = kPi,
+     .unit = "rad", .symbol = "p7_min", .about = "rear joint vertical, +acos(a/b)"},
+    {.key = "rear_max_rad", .field = field<&JointParams::rear_max_rad>, .min = 0.0, .max = kPi,
+     .unit = "rad", .symbol = "p7_max", .about = "rear joint fully extended"},
+    {.key = "control_rate_per_s", .field = field<&JointParams::control_rate_per_s>, .min = 0.001,
+     .max = 100.0, .unit = "1/s", .symbol = "μ", .source = "(4.15), Figure 4.11",
+     .about = "rate of the joints' position control"},
+    {.key = "control_speed_fraction", .field = field<&JointParams::control_speed_fraction>,
+     .min = 0.01, .max = 1.0, .symbol = "C/w", .source = "(4.15), Figure 4.11",
+     .about = "the joints' speed bound C as a fraction of w (C = w/2)"},
+    {.key = "target_tolerance_rad", .field = field<&JointParams::target_tolerance_rad>,
+     .min = 0.001, .max = 1.0, .unit = "rad", .source = "Procedure 4.17",
+     .about = "a joint target counts as reached within this"},
+    {.key = "backlash_uncertainty", .field = field<&JointParams::backlash_uncertainty>, .min = 0.0,
+     .max = 0.5, .source = "docs/decisions.md",
+     .about = "share by which a unit's joint gap may differ from motors.backlash_rad (drawn "
+              "units: 6–15 %); the driver keeps p6, p7 that share of the gap inside their "
+              "positive bounds"},
+};
+
+constexpr ParamSpec kSpin[] = {
+    {.key = "slope_per_m", .field = field<&SpinParams::slope_per_m>, .min = 0.0, .max = 100.0,
+     .unit = "1/m", .about = "F(c) = slope·c + offset: exterior-to-center wheel speed ratio",
+     .calibrated = true},
+    {.key = "offset", .field = field<&SpinParams::offset>, .min = -10.0, .max = 10.0,
+     .about = "the offset of F(c)", .calibrated = true},
+};
+
+constexpr std::string_view kLoadDistributionModes[] = {"off", "v", "s"};
+
+constexpr ParamSpec kLoadDistribution[] = {
+    {.key = "mode", .field = field<&LoadDistributionParams::mode>,
+     .choices = kLoadDistributionModes,
+     .source = "(6.5), (6.6)", .about = "off, h^v (6.5) or h^s (6.6)"},
+    {.key = "gain_per_radps", .field = field<&LoadDistributionParams::gain_per_radps>, .min = 0.0,
+     .max = 100.0, .unit = "s/rad", .source = "(6.5), (6.6)", .about = "the constant 5 /(rad/s)"},
+    {.key = "max_correction_radps", .field = field<&LoadDistributionParams::max_correction_radps>,
+     .min = 0.0, .max = 3.0, .unit = "rad/s", .symbol = "H", .about = "largest correction"},
+};
+
+constexpr ParamSpec kFilters[] = {
+    {.key = "gyro_null_lambda", .field = field<&FilterParams::gyro_null_lambda>, .min = 0.0,
+     .max = kLambdaMax, .symbol = "λ", .source = "(3.4)", .about = "null-rate reading y"},
+    {.key = "reference_voltage_lambda", .field = field<&FilterParams::reference_voltage_lambda>,
+     .min = 0.0, .max = kLambdaMax, .symbol = "λ", .source = "Procedure 3.5",
+     .about = "reference voltage Ū"},
+    {.key = "gravity_lambda", .field = field<&FilterParams::gravity_lambda>, .min = 0.0,
+     .max = kLambdaMax, .symbol = "λ", .source = "chapter 6.2.1",
+     .about = "gravity direction g (1.6 s: not fooled by the accelerations of driving)"},
+};
+
+constexpr ParamSpec kSensors[] = {
+    {.key = "gravity_mps2", .field = field<&SensorParams::gravity_mps2>, .min = 1.0, .max = 30.0,
+     .unit = "m/s²", .symbol = "g", .about = "gravity"},
+    {.key = "gyro_radps_per_count", .field = field<&SensorParams::gyro_radps_per_count>,
+     .min = 1e-6, .max = 1.0, .unit = "rad/s", .source = "(3.4)",
+     .about = "gyro rate per count, at room temperature"},
+    {.key = "gyro_null_typ_counts", .field = field<&SensorParams::gyro_null_typ_counts>, .min = 0.0,
+     .max = 1023.0, .symbol = "y", .source = "(3.4)", .about = "gyro base line (490..520)"},
+    {.key = "accelerometer_minus_g_counts",
+     .field = column<&SensorParams::accelerometer, &AccelerometerAxisParams::minus_g_counts>,
+     .min = 0.0, .max = 1023.0, .source = "Procedure 3.3, (3.5)",
+     .about = "ADC reading of x1, x2, x3 with the axis along −g", .calibrated = true},
+    {.key = "accelerometer_plus_g_counts",
+     .field = column<&SensorParams::accelerometer, &AccelerometerAxisParams::plus_g_counts>,
+     .min = 0.0, .max = 1023.0, .source = "Procedure 3.3, (3.5)",
+     .about = "ADC reading of x1, x2, x3 with the axis along +g", .calibrated = true},
+    {.key = "tilt_front_rad_per_count",
+     .field = field<&SensorParams::tilt_front, &LinearConversion::gain>, .min = -1.0, .max = 1.0,
+     .unit = "rad", .symbol = "θf", .source = "Procedure 3.4", .about = "θf = 0.00495·tltᶠ − 2.61"},
+    {.key = "tilt_front_offset_rad",
+     .field = field<&SensorParams::tilt_front, &LinearConversion::offset>, .min = -10.0,
+     .max = 10.0, .unit = "rad", .symbol = "θf", .source = "Procedure 3.4", .about = "its offset"},
+    {.key = "tilt_rear_rad_per_count",
+     .field = field<&SensorParams::tilt_rear, &LinearConversion::gain>, .min = -1.0, .max = 1.0,
+     .unit = "rad", .symbol = "θr", .source = "Procedure 3.4",
+     .about = "θr = −0.00526·tltʳ + 2.74 (docs/design.md: +2.74)"},
+    {.key = "tilt_rear_offset_rad",
+     .field = field<&SensorParams::tilt_rear, &LinearConversion::offset>, .min = -10.0, .max = 10.0,
+     .unit = "rad", .symbol = "θr", .source = "Procedure 3.4", .about = "its offset"},
+    {.key = "supply_v_per_count", .field = field<&SensorParams::supply, &LinearConversion::gain>,
+     .min = 1e-6, .max = 1.0, .unit = "V", .symbol = "U", .source = "Procedure 3.5",
+     .about = "U = 0.06768·vcc − 41.0823", .calibrated = true},
+    {.key = "supply_offset_v", .field = field<&SensorParams::supply, &LinearConversion::offset>,
+     .min = -100.0, .max = 100.0, .unit = "V", .symbol = "U", .source = "Procedure 3.5",
+     .about = "its offset", .calibrated = true},
+};
+
+constexpr ParamSpec kOperator[] = {
+    {.key = "dead_zone", .field = field<&OperatorParams::dead_zone>, .min = 0.0, .max = 0.9,
+     .about = "|axis| below this reads as 0; above it is rescaled to 0..1"},
+    {.key = "max_drive_speed_radps", .field = field<&OperatorParams::max_drive_speed_radps>,
+     .min = 0.0, .max = 100.0, .unit = "rad/s", .symbol = "v1ᵈ",
+     .about = "drive speed at full deflection (chapter 5: 0.27 m/s at r = 0.12 m)"},
+    {.key = "max_spin_speed_radps", .field = field<&OperatorParams::max_spin_speed_radps>,
+     .min = 0.0, .max = 100.0, .unit = "rad/s", .symbol = "v2ᵈ",
+     .about = "spin speed at full deflection"},
+    {.key = "max_trench_speed_radps", .field = field<&OperatorParams::max_trench_speed_radps>,
+     .min = 0.0, .max = 100.0, .unit = "rad/s", .symbol = "v4ᵈ",
+     .about = "trench speed at full deflection"},
+    {.key = "joint_button_speed_radps", .field = field<&OperatorParams::joint_button_speed_radps>,
+     .min = 0.0, .max = 100.0, .unit = "rad/s", .symbol = "v6ᵈ, v7ᵈ",
+     .about = "joint speed while an extend or contract button is held"},
+    {.key = "calibration_duty", .field = field<&OperatorParams::calibration_duty>, .min = 0.0,
+     .max = 0.5, .symbol = "|d6|, |d7|", .source = "Procedure 4.3",
+     .about = "the joints' duty in calibration mode"},
+    {.key = "drive_rate_per_s", .field = field<&OperatorParams::drive_rate_per_s>, .min = 0.01,
+     .max = 100.0, .unit = "1/s", .symbol = "μ", .source = "(4.14)",
+     .about = "rate that ramps v1…v4 toward their targets"},
+};
+
+constexpr ParamSpec kGaits[] = {
+    {.key = "extended_rad", .field = field<&GaitParams::extended_rad>, .min = 0.0, .max = kPi,
+     .unit = "rad", .symbol = "E", .about = "extended joints: p6 = −E, p7 = +E"},
+    {.key = "max_joint_speed_fraction", .field = field<&GaitParams::max_joint_speed_fraction>,
+     .min = 0.01, .max = 1.0, .symbol = "C/w", .source = "(4.15)",
+     .about = "the joints' speed bound at full right stick, as a fraction of w"},
+};
+
+constexpr ParamSpec kBehaviours[] = {
+    {.key = "power_management", .field = field<&BehaviourParams::power_management>,
+     .source = "(6.3)", .about = "D keeps the voltage drop below Υ"},
+    {.key = "slant_response", .field = field<&BehaviourParams::slant_response>,
+     .source = "chapter 6.2.1", .about = "extend the downhill joint"},
+    {.key = "contract_on_turn", .field = field<&BehaviourParams::contract_on_turn>,
+     .source = "chapter 6.2.2", .about = "contract the joints while spinning"},
+    {.key = "axle_placement", .field = field<&BehaviourParams::axle_placement>,
+     .source = "chapter 6.2.3", .about = "ρ → 1 − ρ when a joint is blocked"},
+    {.key = "slant_deadband_rad", .field = field<&BehaviourParams::slant_deadband_rad>, .min = 0.0,
+     .max = 0.5, .unit = "rad", .source = "chapter 6.2.1",
+     .about = "slopes below this (≈ 3°) count as flat: sensor noise, bumps"},
+    {.key = "axle_placement_load_radps",
+     .field = field<&BehaviourParams::axle_placement_load_radps>,
+     .min = 0.0, .max = 100.0, .unit = "rad/s", .source = "chapter 6.2.3",
+     .about = "|l6|, |l7| above this: the joint is blocked"},
+    {.key = "axle_placement_speed_radps",
+     .field = field<&BehaviourParams::axle_placement_speed_radps>, .min = 0.0, .max = 100.0,
+     .unit = "rad/s", .source = "chapter 6.2.3",
+     .about = "a joint slower than this switches ρ at once"},
+    {.key = "axle_placement_rate_per_s",
+     .field = field<&BehaviourParams::axle_placement_rate_per_s>,
+     .min = 0.0, .max = 1000.0, .unit = "1/s", .source = "chapter 6.2.3",
+     .about = "a faster one moves ρ gradually at this rate"},
+};
+
+constexpr ParamSpec kSafety[] = {
+    {.key = "operator_timeout_s", .field = field<&SafetyParams::operator_timeout_s>, .min = 0.05,
+     .max = 1.0, .unit = "s", .source = "Field Experiment 6.7",
+     .about = "no operator command for this long ⇒ controlled stop; longer lets a rover whose link "
+              "dropped drive on too long"},
+    {.key = "dead_man_dog", .field = field<&SafetyParams::dead_man_dog>, .min = 0, .max = 255,
+     .symbol = "dog", .source = "chapter 3.3",
+     .about = "µ8 stops the motors 0.2621·dog s after the last 0x80 (1.05 s)"},
+    {.key = "max_duty_step", .field = field<&SafetyParams::max_duty_step>, .min = 0.001, .max = 2.0,
+     .source = "chapter 3.2",
+     .about = "|d^k − d^(k−1)| per cycle: consecutive duties differ little"},
+    {.key = "direction_change_duty", .field = field<&SafetyParams::direction_change_duty>,
+     .min = 0.0, .max = 0.2, .source = "chapter 3.2", .about = "drv toggles only while |d| ≤ this"},
+    {.key = "missed_responses_limit", .field = field<&SafetyParams::missed_responses_limit>,
+     .min = 1, .max = 1000, .source = "docs/decisions.md",
+     .about = "consecutive missing responses of a controller ⇒ fault, stop"},
+};
+
+constexpr ParamSpec kConsole[] = {
+    {.key = "listen", .field = field<&ConsoleParams::listen>, .max_length = 64,
+     .about = "ADDR:PORT of the console's server; see the README before opening it to a network"},
+    {.key = "token", .field = field<&ConsoleParams::token>, .max_length = 256,
+     .about = "\"\": a fresh random token at every start (printed with the URL)"},
+    {.key = "status_rate_hz", .field = field<&ConsoleParams::status_rate_hz>, .min = 1.0,
+     .max = 64.0, .unit = "Hz", .about = "status messages per second to each console"},
+    {.key = "allowed_hosts", .field = field<&ConsoleParams::allowed_hosts>, .max_count = 32,
+     .max_length = 253,
+     .about = "names the console is opened by, besides the listen address and localhost (DNS "
+              "rebinding guard)"},
+    {.key = "allowed_origins", .field = field<&ConsoleParams::allowed_origins>, .max_count = 32,
+     .max_length = 300,
+     .about = "other page origins that may open the WebSocket, e.g. a TLS reverse proxy's"},
+};
+
+constexpr SectionSpec kSchema[] = {
+    table<&Configuration::params, &Params::geometry>("geometry", "chapter 3.1 table, Figure 3.3",
+                                                     "The rover's dimensions", kGeometry),
+    table<&Configuration::params, &Params::cycle>("cycle", "chapter 3.2",
+                                                  "The communication cycle and the registers the "
+                                                  "driver configures",
+                                                  kCycle),
+    table<&Configuration::params, &Params::motors>("motors", "chapters 3.2, 4.1, 4.2",
+                                                   "The motors; vectors over the 8 motors in the "
+                                                   "order of (3.1)",
+                                                   kMotors),
+    repeated<&Configuration::params, &Params::motor_curves>(
+        "motor_curve", "Procedure 4.4",
+        "W_icr(d), no-load speed over duty, one table per icr; odd for d < 0. Figures 3.6 and 4.2 "
+        "are lost: W₅₁₁ is reconstructed through W(0.3) = 0.847, W⁻¹(2.429) ≈ 0.826 and W(1) = w",
+        kMotorCurve),
+    repeated<&Configuration::params, &Params::responses>(
+        "response", "(4.4), Procedure 4.8",
+        "δ^j of the motors' response, one table per (h, con); one for the configured cycle",
+        kResponse),
+    table<&Configuration::params, &Params::power>("power", "(4.5), chapter 6.1",
+                                                  "Voltage drop and power management", kPower),
+    table<&Configuration::params, &Params::load>("load", "(4.7)", "Load from torque, l ≈ τ·B",
+                                                 kLoad),
+    table<&Configuration::params, &Params::joints>("joints", "(5.3), (4.15), Procedure 4.17",
+                                                   "The joints' bounds and control", kJoints),
+    table<&Configuration::params, &Params::spin>("spin", "chapter 5.1",
+                                                 "The wheel speeds of spinning", kSpin),
+    table<&Configuration::params, &Params::load_distribution>(
+        "load_distribution", "chapter 6.3", "Traction redistribution", kLoadDistribution),
+    table<&Configuration::params, &Params::filters>(
+        "filters", "chapters 3.3, 6.2.1", "The \"λ close to 1\" low-pass coefficients, per cycle",
+        kFilters),
+    table<&Configuration::params, &Params::sensors>("sensors", "chapter 3.3",
+                                                    "µ8's sensors and their conversions", kSensors),
+    table<&Configuration::params, &Params::operator_input>(
+        "operator", "Remark 5.7", "What full deflection of the gamepad asks for", kOperator),
+    table<&Configuration::params, &Params::gaits>(
+        "gaits", "chapter 5.3", "Wheel walking (docs/design.md's gait tables)", kGaits),
+    table<&Configuration::params, &Params::behaviours>(
+        "behaviours", "chapter 6",
+        "The autonomous behaviours; each can also be switched at run time", kBehaviours),
+    table<&Configuration::params, &Params::safety>(
+        "safety", "chapters 3.2, 3.3", "Duty rules, timeouts and the dead man's switch", kSafety),
+    table<&Configuration::console>("console", "",
+                                   "The operator console's link (src/link); command-line options "
+                                   "override these",
+                                   kConsole),
+};
+
+}  // namespace
+
+std::span<const SectionSpec> param_schema() { return kSchema; }
+
+const SectionSpec* find_section(std::string_view name) {
+  for (const SectionSpec& section : kSchema) {
+    if (section.name == name) return &section;
+  }
+  return nullptr;
+}
+
+}  // namespace marsokhod::config

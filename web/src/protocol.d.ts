@@ -1,0 +1,238 @@
+// The messages between the console and the link server, as docs/operator-protocol.md gives them
+// (src/link/operator_message.cpp parses the console's, server_messages.cpp and status_json.cpp
+// build the server's). Types only: the modules import them in JSDoc,
+//   /** @typedef {import('./protocol').Status} Status */
+// and `npm test` checks them with `tsc --noEmit` (tsconfig.json).
+
+// ---- Console → server ----
+
+/** The wheel-walking gaits of chapter 5.3, by their protocol ids. */
+export type GaitId =
+  | 'none'
+  | 'rolking'
+  | 'front-wheel-walking'
+  | 'rear-wheel-walking'
+  | 'worm-like'
+  | 'rolking-extended-base';
+
+/** The stamp `Link.sendInput` adds to `gamepad` and `targets`. */
+export interface InputStamp {
+  /** 0 … 2⁵³ − 1, counting up on each connection from 1. */
+  seq: number;
+  /** The console's clock when sent [ms], any epoch. */
+  sent_ms: number;
+}
+
+/** The W3C standard gamepad's first 4 axes (each −1..1) and 17 buttons. */
+export interface GamepadReading {
+  axes: number[];
+  buttons: boolean[];
+}
+
+export interface GamepadInput extends GamepadReading {
+  type: 'gamepad';
+}
+
+/** The velocities directly; a field left out is 0, "none" or false. */
+export interface TargetsInput {
+  type: 'targets';
+  v1?: number;
+  v2?: number;
+  v4?: number;
+  v6?: number;
+  v7?: number;
+  gait?: GaitId;
+  gait_speed?: number;
+  calibration_mode?: boolean;
+}
+
+/** An operator input before `Link.sendInput` stamps it. */
+export type OperatorInput = GamepadInput | TargetsInput;
+
+export type GamepadMessage = GamepadInput & InputStamp;
+export type TargetsMessage = TargetsInput & InputStamp;
+
+export type BehaviourName =
+  | 'power_management'
+  | 'slant_response'
+  | 'contract_on_turn'
+  | 'axle_placement';
+
+export type LoadDistribution = 'off' | 'v' | 's';
+
+/** Run-time settings (RuntimeSettings); a key left out leaves that setting as it is. */
+export interface ConfigureMessage {
+  type: 'configure';
+  /** Υ of (6.3) [V], in (0, 10]. */
+  max_drop_v?: number;
+  load_distribution?: LoadDistribution;
+  behaviours?: Partial<Record<BehaviourName, boolean>>;
+  /** Scales v1ᵈ, v2ᵈ, v4ᵈ, in [0, 1]. */
+  speed_scale?: number;
+}
+
+/** The messages without fields. */
+export interface CommandMessage {
+  type: 'stop' | 'clear_faults' | 'take_control' | 'release_control' | 'ping';
+}
+
+export type ConsoleMessage = GamepadMessage | TargetsMessage | ConfigureMessage | CommandMessage;
+
+// ---- Server → console ----
+
+/** The calibration file the driver loaded on top of the configuration. */
+export interface CalibrationInfo {
+  /** null: the configuration's nominal values. */
+  file: string | null;
+  procedures: string[];
+}
+
+export interface HelloMessage {
+  type: 'hello';
+  protocol: number;
+  client_id: number;
+  /** The controlling client's id, or null. */
+  controller: number | null;
+  read_only: boolean;
+  calibration: CalibrationInfo;
+}
+
+export interface ControlMessage {
+  type: 'control';
+  controller: number | null;
+  read_only: boolean;
+  /** True only for the client that held control before. */
+  lost_control: boolean;
+  reason: string;
+}
+
+export interface StoppedMessage {
+  type: 'stopped';
+  by: number;
+  reason: string;
+}
+
+export interface ErrorMessage {
+  type: 'error';
+  /** A path into the message: type, v1, axes[1], behaviours.slant_response, json. */
+  field: string;
+  message: string;
+}
+
+export interface PongMessage {
+  type: 'pong';
+}
+
+export interface StatusMessage {
+  type: 'status';
+  status: Status;
+}
+
+export type ServerMessage =
+  | HelloMessage
+  | ControlMessage
+  | StoppedMessage
+  | ErrorMessage
+  | PongMessage
+  | StatusMessage;
+
+// ---- The status (status_json) ----
+
+/** A number of the status: one that is not finite is null in JSON. */
+export type StatusNumber = number | null;
+
+/** Motor 0…7 of (3.1). */
+export type MotorName = 'FL' | 'FR' | 'CL' | 'CR' | 'BL' | 'BR' | 'AF' | 'AR';
+
+export interface MotorStatus {
+  shaft_position_rad: StatusNumber;
+  position_rad: StatusNumber;
+  velocity_radps: StatusNumber;
+  no_load_velocity_radps: StatusNumber;
+  load_radps: StatusNumber;
+  commanded_radps: StatusNumber;
+  duty: StatusNumber;
+  silent_cycles: number;
+}
+
+export interface Velocities {
+  v1_radps: StatusNumber;
+  v2_radps: StatusNumber;
+  v4_radps: StatusNumber;
+  v6_radps: StatusNumber;
+  v7_radps: StatusNumber;
+}
+
+export interface GaitStatus {
+  id: GaitId;
+  /** For people: "rolking with extended base". */
+  name: string;
+  state: number;
+  speed: StatusNumber;
+}
+
+export interface JointBounds {
+  front_min_rad: StatusNumber;
+  front_max_rad: StatusNumber;
+  rear_min_rad: StatusNumber;
+  rear_max_rad: StatusNumber;
+}
+
+export interface BusStatus {
+  frames: number;
+  malformed: number;
+  duplicates: number;
+  foreign: number;
+  missed: number;
+  last_error: string;
+}
+
+/** The simulator's ground truth for the 3-D view (only in simulation). */
+export interface Truth {
+  position_m?: number[];
+  roll_pitch_yaw_rad?: number[];
+  velocity_mps?: number[];
+  /** 8: the wheels' angles, then p6, p7. */
+  joint_angle_rad?: number[];
+  wheel_angle_rad?: number[];
+  /** 6 × [x, y, z]. */
+  wheel_position_m?: number[][];
+  wheel_slip_mps?: number[];
+  supply_v?: number;
+  computer_on?: boolean;
+}
+
+export interface Status {
+  mission_time_s: StatusNumber;
+  cycle_time_s: StatusNumber;
+  cycle: number;
+  mode: 'startup' | 'driving' | 'calibration' | 'fault';
+  startup_phase: 'configure' | 'dead-man' | 'calibrate' | 'done';
+  supply_v: StatusNumber;
+  reference_supply_v: StatusNumber;
+  yaw_rate_radps: StatusNumber;
+  accel_mps2: StatusNumber[];
+  front_tilt_rad: StatusNumber;
+  rear_tilt_rad: StatusNumber;
+  slope_rad: StatusNumber;
+  motors: Record<MotorName, MotorStatus>;
+  sensor_silent_cycles: number;
+  max_duty: StatusNumber;
+  driving_scale: StatusNumber;
+  walking_scale: StatusNumber;
+  targets: Velocities;
+  commands: Velocities;
+  gait: GaitStatus;
+  front_axle_factor: StatusNumber;
+  rear_axle_factor: StatusNumber;
+  joint_bounds: JointBounds;
+  operator_timeout: boolean;
+  operator_rejection: string;
+  stop_latched: boolean;
+  stop_reason: string;
+  faults: string[];
+  warnings: string[];
+  bus: BusStatus;
+  lcd: string;
+  truth?: Truth;
+}
