@@ -99,7 +99,7 @@ class ConsoleLink {
     if (!server_) return input;
     for (const link::InboundCommand& command : server_->take_inbound()) {
       if (const auto* c = std::get_if<link::ConfigureMessage>(&command.message)) {
-        settings = link::apply_configuration(*c, settings);
+        settings = c->change.applied_to(settings);
         changed = true;
         continue;
       }
