@@ -7,7 +7,7 @@
 
 #include "core/params.hpp"
 
-namespace marsokhod::app {
+namespace marsokhod::config {
 
 struct LoadedConfig {
   Params nominal;  // the configuration alone: what the simulated rover is built from
@@ -27,4 +27,4 @@ inline std::string describe_calibration(const Params& params) {
          (procedures.empty() ? "no procedures" : procedures) + ")";
 }
 
-}  // namespace marsokhod::app
+}  // namespace marsokhod::config
