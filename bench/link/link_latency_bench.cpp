@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
+#include "link/cycle_commands.hpp"
 #include "link/link_server.hpp"
-#include "link/operator_message.hpp"
 #include "runner/session.hpp"
 #include "test_client.hpp"
 
@@ -36,11 +36,8 @@ int main() {
     const auto period = std::chrono::microseconds(session.cycle_us());
     for (std::int64_t k = 0; !stop; ++k) {
       std::this_thread::sleep_until(start + period * k);
-      std::optional<driver::OperatorInput> input;
-      for (const auto& command : server.take_inbound()) {
-        if (auto next = link::operator_input(command.message)) input = next;
-      }
-      const auto& cycle = session.step(input ? &*input : nullptr);
+      const auto commands = link::merge_cycle_commands(server.take_inbound(), session.runtime());
+      const auto& cycle = session.step(commands.input ? &*commands.input : nullptr);
       driving = session.status().mode == driver::DriverMode::kDriving;
       for (const auto& frame : cycle.sent) {
         const auto decoded = protocol::decode(frame);

@@ -43,8 +43,8 @@ void print_result(const calibration::ProcedureResult& r, std::ostream& out) {
 
 }  // namespace
 
-int run_calibrate_command(const CalibrateArgs& args, const LoadedConfig& config, std::istream& in,
-                          std::ostream& out, std::ostream& err) {
+int run_calibrate_command(const CalibrateArgs& args, const config::LoadedConfig& config,
+                          std::istream& in, std::ostream& out, std::ostream& err) {
   if (args.list) {
     list_procedures(out);
     return 0;
@@ -89,7 +89,7 @@ int run_calibrate_command(const CalibrateArgs& args, const LoadedConfig& config,
       }
       source = bench->source();
       out << "marsokhod calibrate " << info->name << ": " << info->reference << " on " << source
-          << "; " << describe_calibration(config.calibration) << "\n";
+          << "; " << config::describe_calibration(config.calibration) << "\n";
     }
     result = calibration::run_procedure(bench.get(), *info, config.params, options);
     if (bench) bench->stop();

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "app/loaded_config.hpp"
+#include "config/loaded_config.hpp"
 
 namespace marsokhod::app {
 
@@ -28,7 +28,7 @@ struct CalibrateArgs {
 
 // 0: fitted and written; 1: refused (a poor fit, an existing file without --force); 2: a bad
 // argument, an unreachable bus, a controller that does not answer.
-int run_calibrate_command(const CalibrateArgs& args, const LoadedConfig& config, std::istream& in,
-                          std::ostream& out, std::ostream& err);
+int run_calibrate_command(const CalibrateArgs& args, const config::LoadedConfig& config,
+                          std::istream& in, std::ostream& out, std::ostream& err);
 
 }  // namespace marsokhod::app

@@ -12,11 +12,11 @@
 
 #include "app/calibrate_command.hpp"
 #include "app/decode_command.hpp"
-#include "app/live_commands.hpp"
 #include "app/scenario_command.hpp"
 #include "app/soak_command.hpp"
 #include "config/calibration.hpp"
 #include "config/load_params.hpp"
+#include "runner/live.hpp"
 
 namespace marsokhod::app {
 namespace {
@@ -66,6 +66,15 @@ std::optional<std::filesystem::path> find_config(const std::string& given) {
   return std::nullopt;
 }
 
+std::string find_web_dist(const std::string& given) {
+  std::error_code ec;
+  if (!given.empty()) return given;
+  if (std::filesystem::is_regular_file("web/dist/index.html", ec)) return "web/dist";
+  const auto tree = std::filesystem::path(MARSOKHOD_SOURCE_DIR) / "web" / "dist";
+  if (std::filesystem::is_regular_file(tree / "index.html", ec)) return tree.string();
+  return "";
+}
+
 int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& out,
             std::ostream& err) {
   CLI::App cli{"marsokhod: control stack and simulator for the Marsokhod rover", "marsokhod"};
@@ -104,10 +113,10 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   scenario_cmd->add_option("--jobs", scenario.jobs, "runs at once in a sweep (default: one per core)")
       ->check(CLI::Range(1, 256));
 
-  RunArgs run;
+  runner::RunArgs run;
   CLI::App* run_cmd = cli.add_subcommand(
       "run", "the simulated rover and the driver in real time, with the console (the default)");
-  auto add_console = [](CLI::App* cmd, ConsoleArgs& c) {
+  auto add_console = [](CLI::App* cmd, runner::ConsoleArgs& c) {
     cmd->add_option("--listen", c.listen, "the console's ADDR:PORT (default: [console] listen)");
     cmd->add_option("--token", c.token,
                     "the console's access token (others see it in ps: prefer --token-file or "
@@ -128,7 +137,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   run_cmd->add_option("--record", run.record, "write can.log, operator.jsonl and telemetry.csv here");
   run_cmd->add_flag("--quiet", run.quiet, "no status line in the terminal");
 
-  SimArgs sim;
+  runner::SimArgs sim;
   CLI::App* sim_cmd = cli.add_subcommand("sim", "the simulated rover alone, served over socketcand");
   sim_cmd->add_option("--listen", sim.listen, "ADDR:PORT (default 127.0.0.1:29536)");
   sim_cmd->add_option("--channel", sim.channel, "the bus' channel name (default can0)");
@@ -138,7 +147,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   sim_cmd->add_option("--duration", sim.duration_s, "stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
 
-  DriveArgs drive;
+  runner::DriveArgs drive;
   CLI::App* drive_cmd = cli.add_subcommand("drive", "the driver on a real or remote bus, with the console");
   drive_cmd->add_option("--can", drive.can, "socketcan:can0 or socketcand://HOST:PORT/CHANNEL")
       ->required();
@@ -197,7 +206,7 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     err << "marsokhod: no configuration file: pass --config FILE or set MARSOKHOD_CONFIG\n";
     return kUsageError;
   }
-  LoadedConfig loaded;
+  config::LoadedConfig loaded;
   loaded.config_file = *config_path;
   if (calibration_file.empty()) {
     if (const char* env = std::getenv("MARSOKHOD_CALIBRATION"); env != nullptr && *env != '\0') {
@@ -236,9 +245,15 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   if (soak_cmd->parsed()) return run_soak_command(soak, loaded, out, err);
   if (calibrate_cmd->parsed()) return run_calibrate_command(calibrate, loaded, in, out, err);
   if (replay_cmd->parsed()) return run_replay_command(replay_dir, params, out, err);
-  if (run_cmd->parsed()) return run_live(run, loaded, out, err);
-  if (sim_cmd->parsed()) return run_sim(sim, loaded.nominal, out, err);
-  if (drive_cmd->parsed()) return run_drive(drive, loaded, out, err);
+  if (run_cmd->parsed()) {
+    run.console.web = find_web_dist(run.console.web);
+    return runner::run_live(run, loaded, out, err);
+  }
+  if (sim_cmd->parsed()) return runner::run_sim(sim, loaded.nominal, out, err);
+  if (drive_cmd->parsed()) {
+    drive.console.web = find_web_dist(drive.console.web);
+    return runner::run_drive(drive, loaded, out, err);
+  }
   return kUsageError;
 }
 

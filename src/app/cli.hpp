@@ -17,4 +17,8 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
 // ./config/marsokhod.toml, else the source tree's. std::nullopt if none of them exists.
 std::optional<std::filesystem::path> find_config(const std::string& given);
 
+// Where the console's files are: the folder given, else ./web/dist, else the source tree's;
+// empty when there is no build.
+std::string find_web_dist(const std::string& given);
+
 }  // namespace marsokhod::app

@@ -6,9 +6,9 @@
 #include <istream>
 #include <ostream>
 
-#include "app/frame_description.hpp"
 #include "bus/candump_log.hpp"
 #include "core/protocol/codec.hpp"
+#include "core/protocol/frame_description.hpp"
 
 namespace marsokhod::app {
 namespace {
@@ -22,7 +22,7 @@ std::string unit_suffix(const std::string& unit) {
   return "_" + unit;
 }
 
-nlohmann::ordered_json to_json(const bus::LoggedFrame& logged, const FrameDescription& d) {
+nlohmann::ordered_json to_json(const bus::LoggedFrame& logged, const protocol::FrameDescription& d) {
   nlohmann::ordered_json j;
   j["time"] = logged.time_s;
   j["timestamp"] = logged.timestamp;
@@ -30,21 +30,21 @@ nlohmann::ordered_json to_json(const bus::LoggedFrame& logged, const FrameDescri
   j["id"] = logged.frame.id;
   j["node"] = d.node;
   j["type"] = d.type;
-  for (const RawField& f : d.raw) {
+  for (const protocol::RawField& f : d.raw) {
     if (f.name == "lcd") {
       j[f.name] = f.text;
     } else {
       j[f.name] = f.value;
     }
   }
-  for (const PhysicalField& f : d.physical) j[f.name + unit_suffix(f.unit)] = f.value;
+  for (const protocol::PhysicalField& f : d.physical) j[f.name + unit_suffix(f.unit)] = f.value;
   return j;
 }
 
-std::string text_line(const bus::LoggedFrame& logged, const FrameDescription& d) {
+std::string text_line(const bus::LoggedFrame& logged, const protocol::FrameDescription& d) {
   char id[8];
   std::snprintf(id, sizeof id, "%03X", static_cast<unsigned>(logged.frame.id));
-  std::string fields = format_text(d);
+  std::string fields = protocol::format_text(d);
   return logged.timestamp + " " + logged.interface + " " + id + " µ" + std::to_string(d.node) +
          " " + d.type + (fields.empty() ? "" : " " + fields);
 }
@@ -53,7 +53,7 @@ std::string text_line(const bus::LoggedFrame& logged, const FrameDescription& d)
 
 int decode_trace(std::istream& in, const std::string& source, const Params& params,
                  const DecodeOptions& options, std::ostream& out, std::ostream& err) {
-  BusContext context(params);
+  protocol::BusContext context(params);
   std::string line;
   int line_number = 0;
   int invalid = 0;
@@ -81,7 +81,7 @@ int decode_trace(std::istream& in, const std::string& source, const Params& para
       continue;
     }
     context.observe(result.message());
-    const FrameDescription d = describe(result.message(), context);
+    const protocol::FrameDescription d = protocol::describe(result.message(), context);
     if (options.json) {
       out << to_json(*logged, d).dump() << "\n";
     } else {

@@ -73,7 +73,7 @@ std::string minutes_and_seconds(double s) {
 
 }  // namespace
 
-int run_sweep_command(const ScenarioArgs& args, const LoadedConfig& config, std::ostream& out,
+int run_sweep_command(const ScenarioArgs& args, const config::LoadedConfig& config, std::ostream& out,
                       std::ostream& err) {
   runner::SweepPlan plan;
   try {
@@ -149,7 +149,7 @@ std::vector<std::filesystem::path> scenario_folders() {
   return folders;
 }
 
-int run_scenario_command(const ScenarioArgs& args, const LoadedConfig& config, std::ostream& out,
+int run_scenario_command(const ScenarioArgs& args, const config::LoadedConfig& config, std::ostream& out,
                          std::ostream& err) {
   const Params& params = config.params;
   if (args.list) {

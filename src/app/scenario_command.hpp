@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/loaded_config.hpp"
+#include "config/loaded_config.hpp"
 #include "core/params.hpp"
 
 namespace marsokhod::app {
@@ -29,7 +29,7 @@ struct ScenarioArgs {
 };
 
 // 0 when every run of the sweep passed, 1 when one failed, 2 for a bad argument.
-int run_sweep_command(const ScenarioArgs& args, const LoadedConfig& config, std::ostream& out,
+int run_sweep_command(const ScenarioArgs& args, const config::LoadedConfig& config, std::ostream& out,
                       std::ostream& err);
 
 // The folders searched for NAME.toml: $MARSOKHOD_SCENARIOS, ./scenarios, the source tree's.
@@ -37,7 +37,7 @@ std::vector<std::filesystem::path> scenario_folders();
 
 // 0 when every check passed, 1 when one failed, 2 for a bad argument or scenario file.
 // The driver runs with config.params, the simulated rover is built from config.nominal.
-int run_scenario_command(const ScenarioArgs& args, const LoadedConfig& config, std::ostream& out,
+int run_scenario_command(const ScenarioArgs& args, const config::LoadedConfig& config, std::ostream& out,
                          std::ostream& err);
 
 // 0 when the replay is identical to the recording, 1 when it differs, 2 when it cannot be read.

@@ -99,7 +99,7 @@ CLI::App* add_soak_command(CLI::App& cli, SoakArgs& args) {
   return cmd;
 }
 
-int run_soak_command(const SoakArgs& args, const LoadedConfig& config, std::ostream& out,
+int run_soak_command(const SoakArgs& args, const config::LoadedConfig& config, std::ostream& out,
                      std::ostream& err) {
   const auto seed = parse_seed(args.seed);
   if (!seed) {

@@ -4,7 +4,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "app/loaded_config.hpp"
+#include "config/loaded_config.hpp"
 
 namespace CLI {
 class App;
@@ -24,7 +24,7 @@ CLI::App* add_soak_command(CLI::App& cli, SoakArgs& args);
 
 // 0 without a violation, 1 with one (its recording written), 2 for a bad argument.
 // The driver runs with config.params, the simulated rover is built from config.nominal.
-int run_soak_command(const SoakArgs& args, const LoadedConfig& config, std::ostream& out,
+int run_soak_command(const SoakArgs& args, const config::LoadedConfig& config, std::ostream& out,
                      std::ostream& err);
 
 }  // namespace marsokhod::app

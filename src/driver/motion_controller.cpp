@@ -85,24 +85,6 @@ struct MotionController::JointCommands {
   mobility::AxleFactors factors;
 };
 
-RuntimeSettings runtime_settings_from(const Params& params) {
-  RuntimeSettings s;
-  s.switches = behaviour::switches_from_params(params.behaviours, params.load_distribution);
-  s.max_drop_v = params.power.max_drop_v;
-  return s;
-}
-
-void validate(const RuntimeSettings& settings) {
-  if (!(settings.max_drop_v > 0.0 && settings.max_drop_v <= 10.0)) {
-    throw std::invalid_argument("max_drop_v: " + std::to_string(settings.max_drop_v) +
-                                " is out of range; allowed (0, 10] V");
-  }
-  if (!(settings.speed_scale >= 0.0 && settings.speed_scale <= 1.0)) {
-    throw std::invalid_argument("speed_scale: " + std::to_string(settings.speed_scale) +
-                                " is out of range; allowed [0, 1]");
-  }
-}
-
 MotionController::MotionController(const Params& params)
     : params_(&params),
       curve_(adaptation::select_motor_curve(params.motor_curves, params.cycle.icr)),

@@ -23,19 +23,10 @@
 #include "core/mobility/gait_sequencer.hpp"
 #include "core/mobility/gamepad.hpp"
 #include "core/params.hpp"
+#include "driver/operator_commands.hpp"
 #include "driver/status.hpp"
 
 namespace marsokhod::driver {
-
-// What the operator may change at run time (through the console), besides the targets.
-struct RuntimeSettings {
-  behaviour::BehaviourSwitches switches;
-  double max_drop_v = 1.5;   // Υ of (6.3)
-  double speed_scale = 1.0;  // v1ᵈ, v2ᵈ, v4ᵈ are scaled by this ∈ [0, 1] (maximum speed)
-};
-RuntimeSettings runtime_settings_from(const Params& params);
-// Throws std::invalid_argument naming the field for Υ ∉ (0, 10] or speed_scale ∉ [0, 1].
-void validate(const RuntimeSettings& settings);
 
 struct MotionInput {
   double period_s = 0.0;

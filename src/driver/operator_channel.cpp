@@ -1,32 +1,8 @@
 #include "driver/operator_channel.hpp"
 
-#include <cmath>
 #include <stdexcept>
 
 namespace marsokhod::driver {
-namespace {
-
-std::optional<std::string> check_speed(const char* name, double value, double limit) {
-  if (!std::isfinite(value)) return std::string(name) + " is not a finite number";
-  if (std::abs(value) > limit) {
-    return std::string(name) + " = " + std::to_string(value) + " is out of range; allowed ±" +
-           std::to_string(limit);
-  }
-  return std::nullopt;
-}
-
-std::optional<std::string> check_position(const char* name, const std::optional<double>& value,
-                                          double min, double max) {
-  if (!value) return std::nullopt;
-  if (!std::isfinite(*value)) return std::string(name) + " is not a finite number";
-  if (*value < min || *value > max) {
-    return std::string(name) + " = " + std::to_string(*value) + " rad is out of range; allowed [" +
-           std::to_string(min) + ", " + std::to_string(max) + "] (5.3)";
-  }
-  return std::nullopt;
-}
-
-}  // namespace
 
 bool is_neutral(const mobility::OperatorTargets& t) {
   const auto& b = t.joint_buttons;
@@ -37,24 +13,6 @@ bool is_neutral(const mobility::OperatorTargets& t) {
 }
 
 OperatorChannel::OperatorChannel(const Params& params) : params_(&params) {}
-
-std::optional<std::string> OperatorChannel::check_targets(const mobility::OperatorTargets& t) const {
-  const OperatorParams& o = params_->operator_input;
-  const double w = params_->motors.max_no_load_speed_radps;
-  if (auto e = check_speed("v1", t.v1_radps, o.max_drive_speed_radps)) return e;
-  if (auto e = check_speed("v2", t.v2_radps, o.max_spin_speed_radps)) return e;
-  if (auto e = check_speed("v4", t.v4_radps, o.max_trench_speed_radps)) return e;
-  if (auto e = check_speed("v6", t.v6_radps, w)) return e;
-  if (auto e = check_speed("v7", t.v7_radps, w)) return e;
-  if (auto e = check_speed("gait_speed", t.gait_speed, 1.0)) return e;
-  const JointParams& j = params_->joints;
-  if (auto e = check_position("front_joint_target", t.front_joint_target_rad, j.front_min_rad,
-                              j.front_max_rad)) {
-    return e;
-  }
-  return check_position("rear_joint_target", t.rear_joint_target_rad, j.rear_min_rad,
-                        j.rear_max_rad);
-}
 
 std::optional<std::string> OperatorChannel::receive(const OperatorInput& input, double time_s) {
   mobility::OperatorTargets next = current_;
@@ -77,8 +35,8 @@ std::optional<std::string> OperatorChannel::receive(const OperatorInput& input, 
       return last_rejection_;
     }
   } else if (input.targets) {
-    if (auto e = check_targets(*input.targets)) {
-      last_rejection_ = *e;
+    if (auto e = check_targets(*input.targets, *params_)) {
+      last_rejection_ = e->message;
       return last_rejection_;
     }
     next = *input.targets;

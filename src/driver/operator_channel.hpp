@@ -1,8 +1,8 @@
-// The operator's commands as the driver sees them: the latest valid input, checked and mapped to
-// targets (Remark 5.7), and the 0.5 s rule of Field Experiment 6.7 — no valid input for
-// operator_timeout_s ⇒ every target is zero and the rover comes to a controlled stop. An invalid
-// input (NaN, out of range) is rejected with a reason and the last valid one stands until the
-// timeout.
+// The operator's commands (operator_commands.hpp) as the driver sees them: the latest valid
+// input, checked against the ranges there and mapped to targets (Remark 5.7), and the 0.5 s rule
+// of Field Experiment 6.7 — no valid input for operator_timeout_s ⇒ every target is zero and the
+// rover comes to a controlled stop. An invalid input (NaN, out of range) is rejected with a
+// reason and the last valid one stands until the timeout.
 //
 // A stop holds (an arming check, as on a hobby transmitter): after a stop — the STOP button of
 // any console, a take-over or a release, which the link turns into stops — every target stays
@@ -17,17 +17,9 @@
 
 #include "core/mobility/gamepad.hpp"
 #include "core/params.hpp"
+#include "driver/operator_commands.hpp"
 
 namespace marsokhod::driver {
-
-// One operator message: a gamepad reading, or the targets of the mapping directly.
-struct OperatorInput {
-  std::optional<mobility::GamepadState> gamepad;
-  std::optional<mobility::OperatorTargets> targets;  // memory is ignored
-  bool stop = false;          // all targets zero until a neutral input re-arms (see above)
-  bool clear_faults = false;  // acknowledge latched faults (silent controllers)
-  std::string stop_reason;    // who stopped and why ("client 3 pressed STOP"); empty: "stop"
-};
 
 // Neutral: no velocity, no gait speed, no joint button and no joint position asked for. The gait
 // and calibration mode may stay selected: choosing them moves nothing.
@@ -53,8 +45,6 @@ class OperatorChannel {
   const std::string& last_rejection() const { return last_rejection_; }
 
  private:
-  std::optional<std::string> check_targets(const mobility::OperatorTargets& t) const;
-
   const Params* params_;
   mobility::OperatorTargets current_;
   mobility::GamepadMemory memory_;

@@ -10,28 +10,6 @@ namespace {
 constexpr std::size_t kShownValueChars = 40;
 constexpr std::size_t kParseReasonChars = 200;
 
-// Shortest text that reads back as the same double ("1.7", not "1.700000"); whole numbers
-// without ".0", as people write ranges ("−1..1").
-std::string number_text(double value) {
-  if (std::isfinite(value) && value == std::trunc(value) && std::abs(value) < 1e15) {
-    return std::to_string(static_cast<long long>(value));
-  }
-  return nlohmann::json(value).dump();
-}
-
-std::string range_text(const NumberRange& range) {
-  std::string text;
-  if (range.min_open) {
-    text = "(" + number_text(range.min) + ", " + number_text(range.max) + "]";
-  } else if (range.min == -range.max) {
-    text = "\u2212" + number_text(range.max) + ".." + number_text(range.max);
-  } else {
-    text = "[" + number_text(range.min) + ", " + number_text(range.max) + "]";
-  }
-  if (!range.unit.empty()) text += " " + std::string(range.unit);
-  return text;
-}
-
 std::string type_name(const nlohmann::json& value) {
   if (value.is_number()) return "a number";
   if (value.is_boolean()) return "a boolean";
@@ -58,10 +36,6 @@ std::string field_name(const std::string& key) {
   return plain ? key : shown_value(key);
 }
 
-NumberRange symmetric_range(double limit, std::string_view unit) {
-  return {-limit, limit, false, unit};
-}
-
 std::string shown_value(const nlohmann::json& value) {
   // ensure_ascii: the cut below can then never split a UTF-8 sequence.
   std::string text = value.dump(-1, ' ', true, nlohmann::json::error_handler_t::replace);
@@ -69,19 +43,23 @@ std::string shown_value(const nlohmann::json& value) {
   return text;
 }
 
-double read_number(const nlohmann::json& value, const std::string& field, const NumberRange& range) {
+double read_number(const nlohmann::json& value, const std::string& field) {
   if (!value.is_number()) wrong_type(value, field, "a number");
   const double number = value.get<double>();
-  if (!std::isfinite(number)) {
-    // JSON has no NaN or Infinity, but a literal like 1e999 overflows to infinity.
-    throw FieldError(field, field + ": the number is not finite; allowed " + range_text(range));
-  }
-  const bool above_min = range.min_open ? number > range.min : number >= range.min;
-  if (!above_min || number > range.max) {
-    throw FieldError(field, field + ": " + number_text(number) + " is out of range; allowed " +
-                                range_text(range));
-  }
+  // JSON has no NaN or Infinity, and the strict parser refuses a literal like 1e999.
+  if (!std::isfinite(number)) throw FieldError(field, field + " is not a finite number");
   return number;
+}
+
+double read_number(const nlohmann::json& value, const std::string& field,
+                   const driver::NumberRange& range) {
+  const double number = read_number(value, field);
+  if (auto error = driver::check_number(field, number, range)) throw_field_error(*error, "");
+  return number;
+}
+
+void throw_field_error(const driver::CommandError& error, std::string_view prefix) {
+  throw FieldError(std::string(prefix) + error.field, std::string(prefix) + error.message);
 }
 
 bool read_bool(const nlohmann::json& value, const std::string& field) {
@@ -95,7 +73,7 @@ const std::string& read_string(const nlohmann::json& value, const std::string& f
 }
 
 void reject_unknown_keys(const nlohmann::json& object, std::string_view prefix,
-                         std::initializer_list<std::string_view> known, std::string_view what) {
+                         const std::vector<std::string_view>& known, std::string_view what) {
   for (const auto& item : object.items()) {
     bool found = false;
     for (std::string_view k : known) found = found || item.key() == k;

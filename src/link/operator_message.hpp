@@ -1,9 +1,11 @@
 // The operator console's messages (JSON text over the WebSocket), parsed into values before any
 // of them reaches the driver. docs/operator-protocol.md is the reference for every field, type,
-// unit and range; this header is its code. The parser is pure and strict: anything it does not
-// understand exactly — malformed JSON, a duplicate or unknown key, a wrong type, a number that
-// is not finite or out of range — is an error naming the field, so that a console bug shows up
-// as a message on the console instead of as a rover doing something nobody asked for.
+// unit and range; this header is its code, with the commands' own fields read by the codec the
+// recordings share (command_json.hpp) and their ranges those of driver/operator_commands.hpp.
+// The parser is pure and strict: anything it does not understand exactly — malformed JSON, a
+// duplicate or unknown key, a wrong type, a number that is not finite or out of range — is an
+// error naming the field, so that a console bug shows up as a message on the console instead of
+// as a rover doing something nobody asked for.
 #pragma once
 
 #include <array>
@@ -16,11 +18,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/mobility/gait_table.hpp"
 #include "core/mobility/gamepad.hpp"
 #include "core/params.hpp"
-#include "driver/motion_controller.hpp"
-#include "driver/operator_channel.hpp"
+#include "driver/operator_commands.hpp"
 
 namespace marsokhod::link {
 
@@ -43,23 +43,16 @@ struct InputStamp {
 // W3C standard mapping.
 struct GamepadMessage {
   InputStamp stamp;
-  std::array<double, mobility::kGamepadAxisCount> axes{};
-  std::array<bool, mobility::kGamepadButtonCount> buttons{};
+  mobility::GamepadState reading;
   bool operator==(const GamepadMessage&) const = default;
 };
 
-// {"type":"targets", …}: the mapping's output directly. A key left out means 0, "none", false:
-// each message is complete, so a lost one cannot leave a stale value behind.
+// {"type":"targets", …}: the mapping's output directly (v1 v2 v4 v6 v7 gait gait_speed
+// calibration_mode; joint buttons and joint targets are not the console's). A key left out means
+// 0, "none", false: each message is complete, so a lost one cannot leave a stale value behind.
 struct TargetsMessage {
   InputStamp stamp;
-  double v1_radps = 0.0;  // |v1| ≤ max_drive_speed_radps
-  double v2_radps = 0.0;  // |v2| ≤ max_spin_speed_radps
-  double v4_radps = 0.0;  // |v4| ≤ max_trench_speed_radps
-  double v6_radps = 0.0;  // |v6| ≤ max_no_load_speed_radps (w)
-  double v7_radps = 0.0;  // |v7| ≤ w
-  mobility::Gait gait = mobility::Gait::kNone;
-  double gait_speed = 0.0;  // s ∈ [−1, 1]
-  bool calibration_mode = false;
+  mobility::OperatorTargets targets;
   bool operator==(const TargetsMessage&) const = default;
 };
 
@@ -79,15 +72,9 @@ struct PingMessage {
   bool operator==(const PingMessage&) const = default;
 };
 
-// {"type":"configure", …}: RuntimeSettings; a key left out leaves that setting as it is.
+// {"type":"configure", …}: a key left out leaves that setting as it is.
 struct ConfigureMessage {
-  std::optional<double> max_drop_v;  // Υ of (6.3), (0, 10] V
-  std::optional<LoadDistributionMode> load_distribution;  // "off" | "v" (6.5) | "s" (6.6)
-  std::optional<bool> power_management;
-  std::optional<bool> slant_response;
-  std::optional<bool> contract_on_turn;
-  std::optional<bool> axle_placement;
-  std::optional<double> speed_scale;  // [0, 1]
+  driver::SettingsChange change;
   bool operator==(const ConfigureMessage&) const = default;
 };
 
@@ -120,8 +107,6 @@ std::string_view message_type(const OperatorMessage& message);
 // gives the message back (the round trip the tests and the fuzzer check).
 nlohmann::json operator_message_json(const OperatorMessage& message);
 
-std::string_view load_distribution_id(LoadDistributionMode mode);
-
 // The stamp of a gamepad or targets message; nullopt for the others (they are never stale: a
 // late stop is still a stop).
 std::optional<InputStamp> input_stamp(const OperatorMessage& message);
@@ -129,9 +114,5 @@ std::optional<InputStamp> input_stamp(const OperatorMessage& message);
 // What the driver takes from a message: gamepad, targets, stop and clear_faults become an
 // OperatorInput (for targets, the gamepad memory is the driver's); the others give nullopt.
 std::optional<driver::OperatorInput> operator_input(const OperatorMessage& message);
-
-// The settings after a configure message: the keys it carries replace those of `current`.
-driver::RuntimeSettings apply_configuration(const ConfigureMessage& message,
-                                            driver::RuntimeSettings current);
 
 }  // namespace marsokhod::link

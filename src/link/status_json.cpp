@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "link/operator_message.hpp"
+#include "core/mobility/gait_table.hpp"
 
 namespace marsokhod::link {
 namespace {
@@ -92,6 +92,22 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
   };
   if (!truth.is_null()) out["truth"] = truth;
   return out;
+}
+
+Json truth_json(const sim::SimulatedRover& rover) {
+  const sim::GroundTruth t = rover.truth();
+  Json wheels = Json::array();
+  for (const auto& w : t.wheel_position_m) wheels.push_back(w);
+  return {{"position_m", t.position_m},
+          {"roll_pitch_yaw_rad", t.roll_pitch_yaw_rad},
+          {"velocity_mps", t.velocity_mps},
+          {"joint_angle_rad", t.joint_angle_rad},
+          {"wheel_angle_rad",
+           std::vector<double>(t.joint_angle_rad.begin(), t.joint_angle_rad.begin() + 6)},
+          {"wheel_position_m", wheels},
+          {"wheel_slip_mps", t.wheel_slip_mps},
+          {"supply_v", rover.electrics().supply_v},
+          {"computer_on", rover.computer_on()}};
 }
 
 }  // namespace marsokhod::link

@@ -1,4 +1,5 @@
-// The driver's status as the console, the logs and the 3-D view read it: every field of
+// The driver's status as the console, the logs and the 3-D view read it, and the simulator's
+// ground truth beside it. The status: every field of
 // DriverStatus, units in the key names, motors keyed by their names in (3.1) (FL FR CL CR BL BR
 // AF AR). docs/operator-protocol.md lists the keys. A number that is not finite becomes null
 // (JSON has no NaN); strings are passed through as they are — the server replaces any invalid
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "driver/status.hpp"
+#include "sim/rover/simulated_rover.hpp"
 
 namespace marsokhod::link {
 
@@ -15,5 +17,10 @@ namespace marsokhod::link {
 // Throws std::invalid_argument if `truth` is neither null nor an object.
 nlohmann::json status_json(const driver::DriverStatus& status,
                            const nlohmann::json& truth = nullptr);
+
+// The simulated rover's ground truth for the 3-D view (docs/console.md lists the keys it reads):
+// position_m, roll_pitch_yaw_rad, velocity_mps, joint_angle_rad (8, motor order),
+// wheel_angle_rad (6), wheel_position_m (6 × [x, y, z]), wheel_slip_mps, supply_v, computer_on.
+nlohmann::json truth_json(const sim::SimulatedRover& rover);
 
 }  // namespace marsokhod::link

@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "bus/candump_log.hpp"
-#include "runner/operator_log.hpp"
+#include "link/command_json.hpp"
 #include "runner/telemetry.hpp"
 
 namespace marsokhod::runner {
@@ -76,8 +76,8 @@ void Recorder::record(const CycleRecord& cycle,
                          {"rx", cycle.received.size()},
                          {"tx", cycle.sent.size()},
                          {"running", cycle.driver_running},
-                         {"input", cycle.input ? to_json(*cycle.input) : nlohmann::json()}};
-  if (runtime) line["runtime"] = to_json(*runtime);
+                         {"input", cycle.input ? link::operator_input_json(*cycle.input) : nlohmann::json()}};
+  if (runtime) line["runtime"] = link::runtime_settings_json(*runtime);
   operator_ << line.dump() << '\n';
   telemetry_ << telemetry_row(static_cast<double>(cycle.time_us) * 1e-6, cycle.driver_running,
                               status, rover)

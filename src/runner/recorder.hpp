@@ -12,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "driver/motion_controller.hpp"
+#include "driver/operator_commands.hpp"
 #include "runner/session.hpp"
 
 namespace marsokhod::runner {

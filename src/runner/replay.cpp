@@ -9,7 +9,7 @@
 
 #include "bus/candump_log.hpp"
 #include "driver/driver.hpp"
-#include "runner/operator_log.hpp"
+#include "link/command_json.hpp"
 #include "runner/recorder.hpp"
 
 namespace marsokhod::runner {
@@ -72,7 +72,7 @@ ReplayResult replay(const std::filesystem::path& folder, const Params& params,
     const std::int64_t t_us = parse_time_us(line.at("t").get<std::string>());
     const auto received = take(line.at("rx").get<std::size_t>(), where);
     const auto recorded = take(line.at("tx").get<std::size_t>(), where);
-    if (line.contains("runtime")) runtime = runtime_settings_from_json(line["runtime"], runtime);
+    if (line.contains("runtime")) runtime = link::runtime_settings_from_json(line["runtime"], runtime);
     if (!line.at("running").get<bool>()) {
       driver.reset();
       ++result.cycles;
@@ -81,7 +81,7 @@ ReplayResult replay(const std::filesystem::path& folder, const Params& params,
     if (!driver) driver = std::make_unique<driver::Driver>(params);
     driver->set_runtime(runtime);
     std::optional<driver::OperatorInput> input;
-    if (!line.at("input").is_null()) input = operator_input_from_json(line["input"]);
+    if (!line.at("input").is_null()) input = link::operator_input_from_json(line["input"]);
     const auto& sent = driver->step(static_cast<double>(t_us) * 1e-6, received,
                                     input ? &*input : nullptr);
     ++result.cycles;

@@ -13,7 +13,7 @@
 
 #include "config/config_reader.hpp"
 #include "runner/metrics.hpp"
-#include "runner/operator_log.hpp"
+#include "link/command_json.hpp"
 #include "sim/physics/terrain.hpp"
 
 namespace marsokhod::runner {
@@ -158,7 +158,7 @@ void read_inputs(const Reader& r, const toml::table& root, Scenario& s) {
     const bool silent = t->get("silent") != nullptr && t->get("silent")->value_or(false);
     if (!silent) {
       try {
-        e.input = operator_input_from_json(j);
+        e.input = link::operator_input_from_json(j);
       } catch (const std::invalid_argument& error) {
         r.fail(name.substr(0, name.size() - 1), error.what(), t);
       }
@@ -273,7 +273,7 @@ void read_checks(const Reader& r, const toml::table& root, Scenario& s) {
 void check_runtime(const Reader& r, const json& settings, const std::string& key,
                    const toml::node& node) {
   try {
-    (void)runtime_settings_from_json(settings, driver::RuntimeSettings{});
+    (void)link::runtime_settings_from_json(settings, driver::RuntimeSettings{});
   } catch (const std::invalid_argument& e) {
     r.fail(key, e.what(), &node);
   }

@@ -35,7 +35,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "driver/operator_channel.hpp"
+#include "driver/operator_commands.hpp"
 #include "sim/rover/simulated_rover.hpp"
 
 namespace marsokhod::runner {

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "runner/metrics.hpp"
-#include "runner/operator_log.hpp"
+#include "link/command_json.hpp"
 #include "runner/recorder.hpp"
 #include "runner/session.hpp"
 
@@ -87,7 +87,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   sim.seed = result.seed;
   Session session(options.rover_params != nullptr ? *options.rover_params : params, params, sim);
   if (scenario.state_of_charge) session.rover().set_state_of_charge(*scenario.state_of_charge);
-  session.set_runtime(runtime_settings_from_json(scenario.runtime, session.runtime()));
+  session.set_runtime(link::runtime_settings_from_json(scenario.runtime, session.runtime()));
   std::unique_ptr<Recorder> recorder;
   if (options.out) recorder = std::make_unique<Recorder>(*options.out, options.config_file, options.calibration_file);
   Metrics metrics(params, scenario.phases);
@@ -104,7 +104,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
     }
     while (next_runtime < scenario.runtime_changes.size() &&
            scenario.runtime_changes[next_runtime].t_s <= now + 1e-9) {
-      session.set_runtime(runtime_settings_from_json(
+      session.set_runtime(link::runtime_settings_from_json(
           scenario.runtime_changes[next_runtime++].settings, session.runtime()));
       runtime_changed = true;
     }

@@ -12,7 +12,7 @@
 #include <random>
 
 #include "core/params.hpp"
-#include "driver/operator_channel.hpp"
+#include "driver/operator_commands.hpp"
 #include "driver/status.hpp"
 
 namespace marsokhod::runner {

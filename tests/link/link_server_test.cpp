@@ -160,7 +160,7 @@ TEST_F(LinkServerTest, ASecondClientIsReadOnlyUntilItTakesControl) {
   const auto inbound = wait_inbound(1);
   ASSERT_EQ(inbound.size(), 1U);
   EXPECT_EQ(inbound[0].client_id, second_hello["client_id"].get<ClientId>());
-  EXPECT_EQ(std::get<GamepadMessage>(inbound[0].message).axes[1], -0.5);
+  EXPECT_EQ(std::get<GamepadMessage>(inbound[0].message).reading.axes[1], -0.5);
 }
 
 TEST_F(LinkServerTest, AnyClientMayStopAndAStopFromAnotherTakesControlAway) {
@@ -222,8 +222,8 @@ TEST_F(LinkServerTest, StaleAndOutOfOrderReadingsAreDropped) {
   ASSERT_TRUE(client->receive_type("pong").has_value());  // all five handled
   const auto inbound = server_->take_inbound();
   ASSERT_EQ(inbound.size(), 2U);
-  EXPECT_EQ(std::get<GamepadMessage>(inbound[0].message).axes[1], -0.1);
-  EXPECT_EQ(std::get<GamepadMessage>(inbound[1].message).axes[1], -0.5);
+  EXPECT_EQ(std::get<GamepadMessage>(inbound[0].message).reading.axes[1], -0.1);
+  EXPECT_EQ(std::get<GamepadMessage>(inbound[1].message).reading.axes[1], -0.5);
   EXPECT_EQ(server_->stats().stale_dropped, 3U);
 }
 

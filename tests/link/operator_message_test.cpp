@@ -56,21 +56,25 @@ TEST(OperatorMessage, ParsesAGamepadReading) {
   buttons.replace(1, 5, "true ");  // button 0 pressed
   const auto message = message_from(gamepad_text("[0, -1, 0.5, 1]", buttons));
   const auto& gamepad = std::get<GamepadMessage>(message);
-  EXPECT_EQ(gamepad.axes, (std::array<double, 4>{0.0, -1.0, 0.5, 1.0}));
-  EXPECT_TRUE(gamepad.buttons[0]);
-  EXPECT_FALSE(gamepad.buttons[16]);
+  EXPECT_EQ(gamepad.reading.axes, (std::array<double, 4>{0.0, -1.0, 0.5, 1.0}));
+  EXPECT_TRUE(gamepad.reading.buttons[0]);
+  EXPECT_FALSE(gamepad.reading.buttons[16]);
 }
 
 TEST(OperatorMessage, RoundTripsEveryMessageType) {
   GamepadMessage gamepad;
-  gamepad.axes = {0.25, -1.0, 1.0, -0.125};
-  gamepad.buttons[mobility::kDpadUp] = true;
-  gamepad.buttons[mobility::kHome] = true;
+  gamepad.reading.axes = {0.25, -1.0, 1.0, -0.125};
+  gamepad.reading.buttons[mobility::kDpadUp] = true;
+  gamepad.reading.buttons[mobility::kHome] = true;
   expect_round_trip(gamepad);
   gamepad.stamp = {9007199254740991U, 1.7e12 + 0.25};
   expect_round_trip(gamepad);
-  expect_round_trip(TargetsMessage{{7, 12.5}, 2.25, -1.5, 1.0, 2.827, -0.5,
-                                   mobility::Gait::kRolkingExtendedBase, -1.0, true});
+  expect_round_trip(TargetsMessage{{7, 12.5},
+                                   {.v1_radps = 2.25, .v2_radps = -1.5, .v4_radps = 1.0,
+                                    .v6_radps = 2.827, .v7_radps = -0.5,
+                                    .gait = mobility::Gait::kRolkingExtendedBase,
+                                    .gait_speed = -1.0, .calibration_mode = true,
+                                    .joint_buttons = {}, .memory = {}}});
   expect_round_trip(TargetsMessage{});
   expect_round_trip(StopMessage{});
   expect_round_trip(ClearFaultsMessage{});
@@ -78,11 +82,11 @@ TEST(OperatorMessage, RoundTripsEveryMessageType) {
   expect_round_trip(ReleaseControlMessage{});
   expect_round_trip(PingMessage{});
   expect_round_trip(ConfigureMessage{});
-  expect_round_trip(ConfigureMessage{10.0, LoadDistributionMode::kSlip, false, true, false, true,
-                                     0.0});
+  expect_round_trip(ConfigureMessage{{10.0, LoadDistributionMode::kSlip, false, true, false, true,
+                                      0.0}});
   ConfigureMessage partial;
-  partial.slant_response = false;
-  partial.speed_scale = 1.0;
+  partial.change.slant_response = false;
+  partial.change.speed_scale = 1.0;
   expect_round_trip(partial);
 }
 
@@ -93,7 +97,7 @@ TEST(OperatorMessage, RoundTripsEveryGait) {
         mobility::Gait::kRolkingExtendedBase}) {
     EXPECT_EQ(mobility::gait_from_id(mobility::gait_id(gait)), gait);
     TargetsMessage targets;
-    targets.gait = gait;
+    targets.targets.gait = gait;
     expect_round_trip(targets);
   }
 }
@@ -103,8 +107,8 @@ TEST(OperatorMessage, TargetsLeftOutAreZeroNoneAndFalse) {
       message_from(R"({"type":"targets","seq":1,"sent_ms":0,"v2":-1.5,"gait":"worm-like"})");
   TargetsMessage expected;
   expected.stamp.seq = 1;
-  expected.v2_radps = -1.5;
-  expected.gait = mobility::Gait::kWormLike;
+  expected.targets.v2_radps = -1.5;
+  expected.targets.gait = mobility::Gait::kWormLike;
   EXPECT_EQ(std::get<TargetsMessage>(message), expected);
 }
 
@@ -112,8 +116,8 @@ TEST(OperatorMessage, ConfigureKeysLeftOutStayUnset) {
   const auto message =
       message_from(R"({"type":"configure","behaviours":{"axle_placement":false},"max_drop_v":2})");
   ConfigureMessage expected;
-  expected.axle_placement = false;
-  expected.max_drop_v = 2.0;
+  expected.change.axle_placement = false;
+  expected.change.max_drop_v = 2.0;
   EXPECT_EQ(std::get<ConfigureMessage>(message), expected);
 }
 
@@ -272,8 +276,11 @@ TEST(OperatorMessage, MapsToTheDriversInput) {
   const auto gamepad = operator_input(message_from(gamepad_text("[0, -1, 0, 0]", kButtons)));
   ASSERT_TRUE(gamepad && gamepad->gamepad);
   EXPECT_EQ(gamepad->gamepad->axes[1], -1.0);
-  const auto targets = operator_input(TargetsMessage{{}, 1.0, 0, 0, 0, 0.5, mobility::Gait::kRolking,
-                                                     0.25, false});
+  const auto targets = operator_input(TargetsMessage{{},
+                                                     {.v1_radps = 1.0, .v7_radps = 0.5,
+                                                      .gait = mobility::Gait::kRolking,
+                                                      .gait_speed = 0.25, .joint_buttons = {},
+                                                      .memory = {}}});
   ASSERT_TRUE(targets && targets->targets);
   EXPECT_EQ(targets->targets->v1_radps, 1.0);
   EXPECT_EQ(targets->targets->v7_radps, 0.5);
@@ -283,23 +290,6 @@ TEST(OperatorMessage, MapsToTheDriversInput) {
   EXPECT_TRUE(operator_input(ClearFaultsMessage{})->clear_faults);
   EXPECT_FALSE(operator_input(PingMessage{}).has_value());
   EXPECT_FALSE(operator_input(ConfigureMessage{}).has_value());
-}
-
-TEST(OperatorMessage, ConfigurationReplacesOnlyTheKeysGiven) {
-  const driver::RuntimeSettings before = driver::runtime_settings_from(kParams);
-  ConfigureMessage message;
-  message.load_distribution = LoadDistributionMode::kVariance;
-  message.contract_on_turn = false;
-  message.speed_scale = 0.5;
-  const driver::RuntimeSettings after = apply_configuration(message, before);
-  EXPECT_EQ(after.switches.load_distribution, LoadDistributionMode::kVariance);
-  EXPECT_FALSE(after.switches.contract_on_turn);
-  EXPECT_EQ(after.speed_scale, 0.5);
-  EXPECT_EQ(after.max_drop_v, before.max_drop_v);
-  EXPECT_EQ(after.switches.power_management, before.switches.power_management);
-  EXPECT_EQ(after.switches.slant_response, before.switches.slant_response);
-  EXPECT_EQ(after.switches.axle_placement, before.switches.axle_placement);
-  EXPECT_NO_THROW(driver::validate(after));
 }
 
 }  // namespace

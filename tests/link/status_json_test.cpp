@@ -1,5 +1,5 @@
 // status_json: every DriverStatus field under its key, motors by name, units in the keys, the
-// caller's ground truth attached as given.
+// caller's ground truth attached as given; truth_json: the simulator's truth the 3-D view reads.
 #include "link/status_json.hpp"
 
 #include <gtest/gtest.h>
@@ -118,6 +118,24 @@ TEST(StatusJson, WritesNonFiniteNumbersAsNull) {
   const nlohmann::json back = nlohmann::json::parse(status_json(s).dump());
   EXPECT_TRUE(back["supply_v"].is_null());
   EXPECT_TRUE(back["motors"]["AF"]["load_radps"].is_null());
+}
+
+TEST(StatusJson, TruthHasTheKeysTheThreeDViewReads) {
+  const Params params;
+  const sim::SimulatedRover rover(params, sim::SimOptions{});
+  const nlohmann::json truth = truth_json(rover);
+  EXPECT_EQ(truth["position_m"].size(), 3u);
+  EXPECT_EQ(truth["roll_pitch_yaw_rad"].size(), 3u);
+  EXPECT_EQ(truth["velocity_mps"].size(), 3u);
+  EXPECT_EQ(truth["joint_angle_rad"].size(), kMotorCount);
+  ASSERT_EQ(truth["wheel_angle_rad"].size(), kWheelCount);
+  EXPECT_EQ(truth["wheel_angle_rad"][5], truth["joint_angle_rad"][5]);
+  ASSERT_EQ(truth["wheel_position_m"].size(), kWheelCount);
+  EXPECT_EQ(truth["wheel_position_m"][0].size(), 3u);
+  EXPECT_EQ(truth["wheel_slip_mps"].size(), kWheelCount);
+  EXPECT_EQ(truth["supply_v"], rover.electrics().supply_v);
+  EXPECT_EQ(truth["computer_on"], true);
+  EXPECT_EQ(status_json(sample_status(), truth)["truth"], truth);
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // replays bit for bit, a tampered one does not, its telemetry has what the plots read, and a
 // CAN tool nobody here wrote (python-can) reads its can.log.
 #include "runner/replay.hpp"
-#include "runner/operator_log.hpp"
+#include "link/command_json.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -83,12 +83,12 @@ TEST(Replay, AStopKeepsItsReasonInTheRecording) {
   driver::OperatorInput stop;
   stop.stop = true;
   stop.stop_reason = "client 3 pressed STOP; client 1 lost control";
-  const nlohmann::json line = to_json(stop);
+  const nlohmann::json line = link::operator_input_json(stop);
   EXPECT_EQ(line["stop_reason"], stop.stop_reason);
-  const driver::OperatorInput back = operator_input_from_json(line);
+  const driver::OperatorInput back = link::operator_input_from_json(line);
   EXPECT_TRUE(back.stop);
   EXPECT_EQ(back.stop_reason, stop.stop_reason);
-  EXPECT_FALSE(to_json(driver::OperatorInput{}).contains("stop_reason"));
+  EXPECT_FALSE(link::operator_input_json(driver::OperatorInput{}).contains("stop_reason"));
 }
 
 TEST(Replay, ATamperedCanLogIsDifferent) {

@@ -15,6 +15,7 @@ struct BehaviourSwitches {
   bool axle_placement = true;    // 6.2.3
   // off, h^v (6.5) or h^s (6.6)
   LoadDistributionMode load_distribution = LoadDistributionMode::kOff;
+  bool operator==(const BehaviourSwitches&) const = default;
 };
 
 // The switches as configured, the driver's starting point.

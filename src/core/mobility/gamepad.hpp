@@ -64,6 +64,7 @@ enum GamepadButton : std::size_t {
 struct GamepadState {
   std::array<double, kGamepadAxisCount> axes{};
   std::array<bool, kGamepadButtonCount> buttons{};
+  bool operator==(const GamepadState&) const = default;
 };
 
 struct JointButtons {
@@ -71,6 +72,7 @@ struct JointButtons {
   bool extend_front = false;    // LT
   bool contract_rear = false;   // RB
   bool extend_rear = false;     // RT
+  bool operator==(const JointButtons&) const = default;
 };
 
 // What the mapping carries from one reading to the next (button edges and latched choices).
@@ -78,6 +80,7 @@ struct GamepadMemory {
   bool calibration_mode = false;
   Gait gait = Gait::kNone;
   bool select_was_pressed = false;
+  bool operator==(const GamepadMemory&) const = default;
 };
 
 struct OperatorTargets {
@@ -95,6 +98,7 @@ struct OperatorTargets {
   // runs. Never set by the gamepad: consoles, scenarios and calibration send them.
   std::optional<double> front_joint_target_rad{};  // p6ᵈ
   std::optional<double> rear_joint_target_rad{};   // p7ᵈ
+  bool operator==(const OperatorTargets&) const = default;
 };
 
 // The dead zone above for one axis value. Throws std::invalid_argument naming `axis_name` if the

@@ -1,29 +1,23 @@
 // The commands that run in real time: `marsokhod run` (simulator + driver + console in one
 // process), `marsokhod sim` (the simulated rover served over socketcand) and `marsokhod drive`
-// (the driver on a real or remote bus, with the console). Real-time pacing, sockets and signals
-// live here, outside the deterministic cycle: the cycle still takes time as a value.
+// (the driver on a real or remote bus, with the console). Pacing (live_pacing.hpp), sockets and
+// signals live here, outside the deterministic cycle: the cycle still takes time as a value.
+//
+// `run` and `drive` are one loop, one cycle every h: wait for the cycle, take the console's
+// commands (live_console.hpp), step the driver, publish its status. They differ only in what
+// answers the driver on the bus: the simulated rover in this process (with a scenario's faults
+// and a recording), or a CAN transport.
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
 #include <iosfwd>
-#include <optional>
 #include <string>
 
-#include "app/loaded_config.hpp"
+#include "config/loaded_config.hpp"
 #include "core/params.hpp"
+#include "runner/live_console.hpp"
 
-namespace marsokhod::app {
-
-// Empty or zero: the configuration's [console] values.
-struct ConsoleArgs {
-  std::string listen;
-  std::string token;            // visible to every user in `ps`: prefer token_file or the environment
-  std::string token_file;       // the token in a file only its owner may read (mode 0600)
-  std::string web;              // the console's build; empty: web/dist of the working folder or source tree
-  bool no_console = false;
-  double status_rate_hz = 0.0;
-};
+namespace marsokhod::runner {
 
 struct RunArgs {
   ConsoleArgs console;
@@ -49,14 +43,13 @@ struct DriveArgs {
   bool quiet = false;
 };
 
+// The exit status: 0 when stopped (signal or duration), 1 when the bus failed, 2 when the
+// arguments, files or addresses are not usable (one line on `err`).
 // The driver runs with config.params, the simulated rover is built from config.nominal.
-int run_live(const RunArgs& args, const LoadedConfig& config, std::ostream& out,
+int run_live(const RunArgs& args, const config::LoadedConfig& config, std::ostream& out,
              std::ostream& err);
 int run_sim(const SimArgs& args, const Params& params, std::ostream& out, std::ostream& err);
-int run_drive(const DriveArgs& args, const LoadedConfig& config, std::ostream& out,
+int run_drive(const DriveArgs& args, const config::LoadedConfig& config, std::ostream& out,
               std::ostream& err);
 
-// Where the console's files are: the given folder, else ./web/dist, else the source tree's.
-std::optional<std::filesystem::path> find_web_dist(const std::string& given);
-
-}  // namespace marsokhod::app
+}  // namespace marsokhod::runner

@@ -1,4 +1,4 @@
-#include "app/frame_description.hpp"
+#include "core/protocol/frame_description.hpp"
 
 #include <cstdio>
 #include <numbers>
@@ -9,10 +9,8 @@
 #include "core/tracking/motor_velocity.hpp"
 #include "core/tracking/sensor_conversion.hpp"
 
-namespace marsokhod::app {
+namespace marsokhod::protocol {
 namespace {
-
-using namespace protocol;
 
 double duty(bool drv, int pwm, int icr) { return (drv ? -1.0 : 1.0) * pwm / icr; }
 
@@ -129,4 +127,4 @@ std::string format_text(const FrameDescription& description) {
   return out;
 }
 
-}  // namespace marsokhod::app
+}  // namespace marsokhod::protocol

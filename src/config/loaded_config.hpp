@@ -8,7 +8,7 @@
 #include "config/configuration.hpp"
 #include "core/params.hpp"
 
-namespace marsokhod::app {
+namespace marsokhod::config {
 
 struct LoadedConfig {
   Params nominal;  // the configuration alone: what the simulated rover is built from
@@ -30,4 +30,4 @@ inline std::string describe_calibration(const config::CalibrationSource& calibra
          (procedures.empty() ? "no procedures" : procedures) + ")";
 }
 
-}  // namespace marsokhod::app
+}  // namespace marsokhod::config

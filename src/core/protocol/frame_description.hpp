@@ -10,7 +10,7 @@
 #include "core/params.hpp"
 #include "core/protocol/codec.hpp"
 
-namespace marsokhod::app {
+namespace marsokhod::protocol {
 
 struct RawField {
   std::string name;  // thesis name: "pwm", "enc", "acc1", "lcd"
@@ -39,8 +39,8 @@ class BusContext {
  public:
   explicit BusContext(const Params& params);
   // Remembers a configuration request's icr and con; other messages change nothing.
-  void observe(const protocol::Message& message);
-  protocol::DecodeContext decode_context() const;
+  void observe(const Message& message);
+  DecodeContext decode_context() const;
   int icr(std::uint8_t node) const { return icr_.at(node); }
   int con(std::uint8_t node) const { return con_.at(node); }
   const Params& params() const { return *params_; }
@@ -51,9 +51,9 @@ class BusContext {
   std::array<int, kMotorCount> con_{};
 };
 
-FrameDescription describe(const protocol::Message& message, const BusContext& context);
+FrameDescription describe(const Message& message, const BusContext& context);
 
 // "drv=1 eim=1 pwm=300 d=-0.587": raw fields, then physical ones with their units.
 std::string format_text(const FrameDescription& description);
 
-}  // namespace marsokhod::app
+}  // namespace marsokhod::protocol

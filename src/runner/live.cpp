@@ -1,0 +1,258 @@
+#include "runner/live.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <ostream>
+#include <thread>
+#include <vector>
+
+#include "bus/socketcand_server.hpp"
+#include "bus/transport.hpp"
+#include "driver/driver.hpp"
+#include "link/listen_address.hpp"
+#include "link/status_json.hpp"
+#include "runner/live_pacing.hpp"
+#include "runner/recorder.hpp"
+#include "runner/scenario.hpp"
+#include "runner/scenario_runner.hpp"
+#include "runner/session.hpp"
+
+namespace marsokhod::runner {
+namespace {
+
+constexpr int kUsageError = 2;
+
+void print_status_line(double t, const driver::DriverStatus& s, std::ostream& out) {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "t=%7.1fs %-11s U=%5.2fV (%5.2f) D=%.2f v1=%+.2f v2=%+.2f p6=%+.3f p7=%+.3f %s%s\n", t,
+                driver::mode_name(s.mode), s.supply_v, s.reference_supply_v, s.max_duty,
+                s.commands.v1_radps, s.commands.v2_radps, s.motors[kFrontJoint].position_rad,
+                s.motors[kRearJoint].position_rad, s.operator_timeout ? "timeout " : "",
+                s.faults.empty() ? "" : s.faults.front().c_str());
+  out << line << std::flush;
+}
+
+sim::SimOptions sim_options(const std::string& scenario, std::uint64_t seed,
+                            std::optional<Scenario>& loaded) {
+  sim::SimOptions options;
+  if (!scenario.empty()) {
+    loaded = load_scenario(scenario);
+    options = loaded->sim;
+  }
+  options.seed = seed;
+  return options;
+}
+
+// What answers the driver on the bus, with the driver: the one difference between run and drive.
+class LiveBus {
+ public:
+  virtual ~LiveBus() = default;
+  // Until cycle k is due at `deadline`, taking what the bus delivers meanwhile.
+  virtual void wait_until(Pacer::Clock::time_point deadline) = 0;
+  virtual const driver::RuntimeSettings& runtime() const = 0;
+  virtual void set_runtime(const driver::RuntimeSettings& settings) = 0;
+  // The driver's cycle at t with the operator's input; `settings_changed` for a recording.
+  virtual void step(double t_s, const driver::OperatorInput* input, bool settings_changed) = 0;
+  virtual const driver::DriverStatus& status() const = 0;
+  virtual double time_s() const = 0;  // the status line's time and --duration's
+  virtual nlohmann::json truth() const { return nullptr; }
+};
+
+// `run`: the simulated rover and the driver in lockstep (session.hpp), the scenario's faults at
+// their times, every cycle recorded when asked.
+class SimulatedBus final : public LiveBus {
+ public:
+  SimulatedBus(Session& session, const std::optional<Scenario>& scenario, Recorder* recorder)
+      : session_(&session), scenario_(&scenario), recorder_(recorder) {}
+  void wait_until(Pacer::Clock::time_point deadline) override {
+    std::this_thread::sleep_until(deadline);
+  }
+  const driver::RuntimeSettings& runtime() const override { return session_->runtime(); }
+  void set_runtime(const driver::RuntimeSettings& settings) override {
+    session_->set_runtime(settings);
+  }
+  void step(double /*t_s: the session keeps its own*/, const driver::OperatorInput* input,
+            bool settings_changed) override {
+    if (scenario_->has_value()) {
+      const std::vector<FaultEvent>& faults = (*scenario_)->faults;
+      while (next_fault_ < faults.size() && faults[next_fault_].t_s <= session_->time_s()) {
+        apply_fault(faults[next_fault_++], *session_);
+      }
+    }
+    const CycleRecord& cycle = session_->step(input);
+    if (recorder_ != nullptr) {
+      recorder_->record(cycle, settings_changed ? std::optional(session_->runtime()) : std::nullopt,
+                        session_->status(), session_->rover());
+    }
+  }
+  const driver::DriverStatus& status() const override { return session_->status(); }
+  double time_s() const override { return session_->time_s(); }
+  nlohmann::json truth() const override { return link::truth_json(session_->rover()); }
+
+ private:
+  Session* session_;
+  const std::optional<Scenario>* scenario_;
+  Recorder* recorder_;
+  std::size_t next_fault_ = 0;
+};
+
+// `drive`: the driver on a CAN transport; the frames that arrive until a cycle is due are its.
+class TransportBus final : public LiveBus {
+ public:
+  TransportBus(const Params& params, bus::CanTransport& transport)
+      : driver_(params), transport_(&transport) {}
+  void wait_until(Pacer::Clock::time_point deadline) override {
+    for (auto now = Pacer::Clock::now(); now < deadline; now = Pacer::Clock::now()) {
+      const auto frames = transport_->receive(
+          std::chrono::duration_cast<std::chrono::microseconds>(deadline - now));
+      received_.insert(received_.end(), frames.begin(), frames.end());
+    }
+  }
+  const driver::RuntimeSettings& runtime() const override { return driver_.runtime(); }
+  void set_runtime(const driver::RuntimeSettings& settings) override {
+    driver_.set_runtime(settings);
+  }
+  void step(double t_s, const driver::OperatorInput* input, bool /*settings_changed*/) override {
+    for (const auto& f : driver_.step(t_s, received_, input)) transport_->send(f);
+    received_.clear();
+  }
+  const driver::DriverStatus& status() const override { return driver_.status(); }
+  double time_s() const override { return driver_.status().mission_time_s; }
+
+ private:
+  driver::Driver driver_;
+  bus::CanTransport* transport_;
+  std::vector<protocol::CanFrame> received_;
+};
+
+struct LoopOptions {
+  const char* command;  // "run", "drive": for an error
+  double duration_s;
+  bool quiet;
+};
+
+// One cycle every `period` until SIGINT/SIGTERM or the duration: 0, or 1 when the bus failed.
+int run_cycles(LiveBus& bus, LiveConsole& console, std::chrono::microseconds period,
+               const LoopOptions& o, std::ostream& out, std::ostream& err) {
+  const Pacer pacer(period);
+  for (std::uint64_t k = 0; !Pacer::stop_requested(); ++k) {
+    try {
+      bus.wait_until(pacer.deadline(k));
+      const link::CycleCommands commands = console.take(bus.runtime());
+      if (commands.settings) bus.set_runtime(*commands.settings);
+      const bool changed = k == 0 || commands.settings.has_value();
+      bus.step(pacer.seconds(k), commands.input ? &*commands.input : nullptr, changed);
+    } catch (const bus::TransportError& e) {
+      err << "marsokhod " << o.command << ": " << e.what() << "\n";
+      return 1;
+    }
+    if (k % console.status_every() == 0) console.publish(bus.status(), bus.truth());
+    if (!o.quiet && k % 64 == 0) print_status_line(bus.time_s(), bus.status(), out);
+    if (o.duration_s > 0.0 && bus.time_s() >= o.duration_s) break;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_live(const RunArgs& args, const config::LoadedConfig& config, std::ostream& out,
+             std::ostream& err) {
+  const Params& params = config.params;
+  std::optional<Scenario> scenario;
+  std::unique_ptr<Session> session;
+  std::unique_ptr<LiveConsole> console;
+  std::unique_ptr<Recorder> recorder;
+  try {
+    session = std::make_unique<Session>(config.nominal, params,
+                                        sim_options(args.scenario, args.seed, scenario));
+    console = std::make_unique<LiveConsole>(config, args.console, out);
+    if (!args.record.empty()) {
+      recorder = std::make_unique<Recorder>(args.record, config.config_file,
+                                            config.calibration_file);
+    }
+  } catch (const std::exception& e) {
+    err << "marsokhod run: " << e.what() << "\n";
+    return kUsageError;
+  }
+  out << config::describe_calibration(config.calibration) << "\n";
+  SimulatedBus bus(*session, scenario, recorder.get());
+  run_cycles(bus, *console, std::chrono::microseconds(session->cycle_us()),
+             {"run", args.duration_s, args.quiet}, out, err);
+  out << "stopped after " << session->time_s() << " s\n";
+  return 0;
+}
+
+int run_drive(const DriveArgs& args, const config::LoadedConfig& config, std::ostream& out,
+              std::ostream& err) {
+  const Params& params = config.params;
+  std::unique_ptr<bus::CanTransport> transport;
+  std::unique_ptr<LiveConsole> console;
+  try {
+    transport = bus::open_transport(args.can);
+    console = std::make_unique<LiveConsole>(config, args.console, out);
+  } catch (const std::exception& e) {
+    err << "marsokhod drive: " << e.what() << "\n";
+    return kUsageError;
+  }
+  out << "driving over " << transport->name() << "; " << config::describe_calibration(config.calibration)
+      << "\n" << std::flush;
+  TransportBus bus(params, *transport);
+  const auto period = std::chrono::microseconds(std::llround(params.cycle.period_s * 1e6));
+  if (const int status = run_cycles(bus, *console, period, {"drive", args.duration_s, args.quiet},
+                                    out, err);
+      status != 0) {
+    return status;
+  }
+  out << "stopped\n";
+  return 0;
+}
+
+int run_sim(const SimArgs& args, const Params& params, std::ostream& out, std::ostream& err) {
+  std::optional<Scenario> scenario;
+  std::unique_ptr<sim::SimulatedRover> rover;
+  std::mutex mutex;
+  std::vector<protocol::CanFrame> inbox;
+  std::unique_ptr<bus::SocketcandServer> server;
+  try {
+    rover = std::make_unique<sim::SimulatedRover>(params, sim_options(args.scenario, args.seed, scenario));
+    const link::ListenAddress listen = link::parse_listen_address(args.listen);
+    bus::SocketcandServer::Config config;
+    config.address = listen.address;
+    config.port = listen.port;
+    config.channel = args.channel;
+    server = std::make_unique<bus::SocketcandServer>(config, [&](const protocol::CanFrame& f) {
+      const std::lock_guard lock(mutex);
+      inbox.push_back(f);
+    });
+    server->start();
+  } catch (const std::exception& e) {
+    err << "marsokhod sim: " << e.what() << "\n";
+    return kUsageError;
+  }
+  out << "socketcand: listening on " << args.listen.substr(0, args.listen.rfind(':')) << ":"
+      << server->port() << ", channel " << args.channel << "\n" << std::flush;
+  const Pacer pacer(std::chrono::milliseconds(1));
+  for (std::uint64_t k = 1; !Pacer::stop_requested(); ++k) {
+    pacer.sleep_until(k);
+    std::vector<protocol::CanFrame> frames;
+    {
+      const std::lock_guard lock(mutex);
+      frames.swap(inbox);
+    }
+    for (const auto& f : frames) rover->send(f, rover->time_s());
+    for (const sim::TimedFrame& f : rover->advance_to(static_cast<double>(k) * 1e-3)) {
+      server->broadcast(f.frame, f.time_s);
+    }
+    if (args.duration_s > 0.0 && rover->time_s() >= args.duration_s) break;
+  }
+  server->stop();
+  out << "stopped after " << rover->time_s() << " s\n";
+  return 0;
+}
+
+}  // namespace marsokhod::runner

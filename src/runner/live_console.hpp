@@ -1,0 +1,49 @@
+// The console of `marsokhod run` and `marsokhod drive` (live.hpp): the link server set up from
+// the command line and the configuration's [console], each cycle's commands merged by the link's
+// rule (link/cycle_commands.hpp), and the status published at the status rate.
+#pragma once
+
+#include <iosfwd>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "config/loaded_config.hpp"
+#include "core/params.hpp"
+#include "driver/operator_commands.hpp"
+#include "driver/status.hpp"
+#include "link/cycle_commands.hpp"
+#include "link/link_server.hpp"
+
+namespace marsokhod::runner {
+
+// Empty or zero: the configuration's [console] values.
+struct ConsoleArgs {
+  std::string listen;
+  std::string token;            // visible to every user in `ps`: prefer token_file or the environment
+  std::string token_file;       // the token in a file only its owner may read (mode 0600)
+  std::string web;              // the console's build folder; empty: none (the WebSocket still works)
+  bool no_console = false;
+  double status_rate_hz = 0.0;
+};
+
+class LiveConsole {
+ public:
+  // Starts the server (unless args.no_console) and prints its address. Throws what LinkServer
+  // and the token file throw: a bad address, token or file.
+  LiveConsole(const config::LoadedConfig& config, const ConsoleArgs& args, std::ostream& out);
+
+  // The commands that arrived since the last call, merged; `current`: the settings in force.
+  link::CycleCommands take(const driver::RuntimeSettings& current);
+  // truth: the simulator's (link::truth_json) or null.
+  void publish(const driver::DriverStatus& status, const nlohmann::json& truth);
+  // The status rate in cycles: publish every this many cycles.
+  std::uint64_t status_every() const { return status_every_; }
+
+ private:
+  std::unique_ptr<link::LinkServer> server_;
+  std::uint64_t status_every_ = 1;
+};
+
+}  // namespace marsokhod::runner
