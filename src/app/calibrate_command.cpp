@@ -1,6 +1,9 @@
 #include "app/calibrate_command.hpp"
 
 #include <iomanip>
+#include <memory>
+#include <optional>
+#include <string>
 #include <istream>
 #include <ostream>
 
@@ -43,6 +46,63 @@ void print_result(const calibration::ProcedureResult& r, std::ostream& out) {
 
 }  // namespace
 
+namespace {
+
+// What is wrong with the arguments for this procedure (one line), or nothing.
+std::optional<std::string> argument_problem(const CalibrateArgs& args,
+                                            const calibration::ProcedureInfo& info) {
+  if (info.needs_bench) {
+    if (args.sim == !args.can.empty()) {
+      return "say where the rover is: --sim (the simulated rover) or --can URL";
+    }
+    if (!args.from.empty()) return "--from is for voltage-drop only";
+  } else if (args.from.empty()) {
+    return "--from DIR is required (a scenario's --out folder with telemetry.csv)";
+  }
+  return std::nullopt;
+}
+
+std::unique_ptr<calibration::Bench> open_bench(const CalibrateArgs& args,
+                                               const calibration::ProcedureInfo& info,
+                                               const config::LoadedConfig& config,
+                                               std::istream& in, std::ostream& out) {
+  if (args.sim) {
+    sim::SimOptions sim_options = calibration::sim_bench_options(args.seed);
+    if (info.on_battery) sim_options.supply = sim::SupplyKind::kBattery;
+    return std::make_unique<calibration::SimBench>(config.params, sim_options, config.nominal);
+  }
+  return std::make_unique<calibration::BusBench>(config.params, bus::open_transport(args.can), in,
+                                                 out);
+}
+
+// The plots (--plot) and the calibration file. 0, kUsageError or kRefused.
+int write_outputs(const CalibrateArgs& args, const calibration::ProcedureInfo& info,
+                  const calibration::ProcedureResult& result, const config::LoadedConfig& config,
+                  const std::string& source, std::ostream& out, std::ostream& err) {
+  if (!args.plot.empty()) {
+    try {
+      if (const auto note = calibration::write_recordings(result.recordings, args.plot)) {
+        out << "  " << *note << "\n";
+      } else {
+        out << "  measured data and plots in " << args.plot << "\n";
+      }
+    } catch (const std::exception& e) {
+      err << "marsokhod calibrate " << info.name << ": " << e.what() << "\n";
+      return kUsageError;
+    }
+  }
+  try {
+    calibration::write_calibration(args.out, result, config.config_file, source, args.force);
+  } catch (const calibration::CalibrationRefused& e) {
+    err << "marsokhod " << e.what() << "\n";
+    return kRefused;
+  }
+  out << "wrote " << args.out << " (load it with --calibration " << args.out << ")\n";
+  return 0;
+}
+
+}  // namespace
+
 int run_calibrate_command(const CalibrateArgs& args, const config::LoadedConfig& config,
                           std::istream& in, std::ostream& out, std::ostream& err) {
   if (args.list) {
@@ -55,47 +115,26 @@ int run_calibrate_command(const CalibrateArgs& args, const config::LoadedConfig&
         << "\n";
     return kUsageError;
   }
+  if (const auto problem = argument_problem(args, *info)) {
+    err << "marsokhod calibrate " << info->name << ": " << *problem << "\n";
+    return kUsageError;
+  }
   calibration::ProcedureOptions options;
   options.duration_s = args.duration_s;
   options.icr = args.icr;
   if (!args.from.empty()) options.from = args.from;
   std::unique_ptr<calibration::Bench> bench;
-  if (info->needs_bench) {
-    if (args.sim == !args.can.empty()) {
-      err << "marsokhod calibrate " << info->name
-          << ": say where the rover is: --sim (the simulated rover) or --can URL\n";
-      return kUsageError;
-    }
-    if (!args.from.empty()) {
-      err << "marsokhod calibrate " << info->name << ": --from is for voltage-drop only\n";
-      return kUsageError;
-    }
-  } else if (args.from.empty()) {
-    err << "marsokhod calibrate " << info->name
-        << ": --from DIR is required (a scenario's --out folder with telemetry.csv)\n";
-    return kUsageError;
-  }
   std::string source = args.from.empty() ? "" : "recording " + args.from;
   calibration::ProcedureResult result;
   try {
     if (info->needs_bench) {
-      if (args.sim) {
-        sim::SimOptions sim_options = calibration::sim_bench_options(args.seed);
-        if (info->on_battery) sim_options.supply = sim::SupplyKind::kBattery;
-        bench = std::make_unique<calibration::SimBench>(config.params, sim_options, config.nominal);
-      } else {
-        bench = std::make_unique<calibration::BusBench>(config.params,
-                                                        bus::open_transport(args.can), in, out);
-      }
+      bench = open_bench(args, *info, config, in, out);
       source = bench->source();
       out << "marsokhod calibrate " << info->name << ": " << info->reference << " on " << source
           << "; " << config::describe_calibration(config.calibration) << "\n";
     }
     result = calibration::run_procedure(bench.get(), *info, config.params, options);
     if (bench) bench->stop();
-  } catch (const std::invalid_argument& e) {
-    err << "marsokhod calibrate " << info->name << ": " << e.what() << "\n";
-    return kUsageError;
   } catch (const std::exception& e) {
     err << "marsokhod calibrate " << info->name << ": " << e.what() << "\n";
     return kUsageError;
@@ -105,26 +144,7 @@ int run_calibrate_command(const CalibrateArgs& args, const config::LoadedConfig&
     out << "  measured for " << std::fixed << std::setprecision(1) << bench->time_s()
         << " s of bench time" << std::defaultfloat << "\n";
   }
-  if (!args.plot.empty()) {
-    try {
-      if (const auto note = calibration::write_recordings(result.recordings, args.plot)) {
-        out << "  " << *note << "\n";
-      } else {
-        out << "  measured data and plots in " << args.plot << "\n";
-      }
-    } catch (const std::exception& e) {
-      err << "marsokhod calibrate " << info->name << ": " << e.what() << "\n";
-      return kUsageError;
-    }
-  }
-  try {
-    calibration::write_calibration(args.out, result, config.config_file, source, args.force);
-  } catch (const calibration::CalibrationRefused& e) {
-    err << "marsokhod " << e.what() << "\n";
-    return kRefused;
-  }
-  out << "wrote " << args.out << " (load it with --calibration " << args.out << ")\n";
-  return 0;
+  return write_outputs(args, *info, result, config, source, out, err);
 }
 
 }  // namespace marsokhod::app

@@ -75,60 +75,81 @@ std::string find_web_dist(const std::string& given) {
   return "";
 }
 
-int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& out,
-            std::ostream& err) {
-  CLI::App cli{"marsokhod: control stack and simulator for the Marsokhod rover", "marsokhod"};
-  cli.require_subcommand(1);
-  std::string config_file;
-  cli.add_option("--config", config_file,
-                 "configuration file (default: $MARSOKHOD_CONFIG, ./config/marsokhod.toml)")
-      ->check(CLI::ExistingFile);
-  std::string calibration_file;
-  cli.add_option("--calibration", calibration_file,
-                 "a calibration file (marsokhod calibrate) loaded on top of the configuration "
-                 "for the driver (default: $MARSOKHOD_CALIBRATION, else none)")
-      ->check(CLI::ExistingFile);
+namespace {
 
+// Every subcommand's arguments, bound to CLI11 by reference: built in place, never moved.
+struct Commands {
   DecodeArgs decode;
-  CLI::App* decode_cmd =
-      cli.add_subcommand("decode", "decode a CAN trace in candump log format, one frame a line");
-  decode_cmd->add_option("FILE", decode.file, "candump log file, or - for standard input")
-      ->required();
-  decode_cmd->add_flag("--json", decode.json, "print one JSON object a line");
-
   ScenarioArgs scenario;
-  CLI::App* scenario_cmd = cli.add_subcommand(
-      "scenario", "run a scenario headless, faster than real time, and check its results");
-  scenario_cmd->add_option("NAME", scenario.name, "a shipped scenario's name, or a scenario file");
-  std::uint64_t seed = 0;
-  CLI::Option* seed_option = scenario_cmd->add_option("--seed", seed, "the simulator's seed")->check(kSeed);
-  scenario_cmd->add_option("--out", scenario.out,
-                           "write can.log, operator.jsonl, telemetry.csv and plots here");
-  scenario_cmd->add_flag("--json", scenario.json, "print one JSON object");
-  scenario_cmd->add_flag("--list", scenario.list, "name the shipped scenarios");
-  scenario_cmd->add_flag("--no-plots", scenario.no_plots, "skip the gnuplot PNGs");
-  scenario_cmd->add_flag("--all", scenario.all, "every shipped scenario (a sweep)");
-  scenario_cmd->add_option("--seeds", scenario.seeds,
-                           "a sweep over the seeds A-B (each seed a different rover unit)");
-  scenario_cmd->add_option("--jobs", scenario.jobs, "runs at once in a sweep (default: one per core)")
-      ->check(CLI::Range(1, 256));
-
+  std::uint64_t scenario_seed = 0;
   runner::RunArgs run;
-  CLI::App* run_cmd = cli.add_subcommand(
+  runner::SimArgs sim;
+  runner::DriveArgs drive;
+  CalibrateArgs calibrate;
+  SoakArgs soak;
+  std::string replay_dir;
+  CLI::App* decode_cmd = nullptr;
+  CLI::App* scenario_cmd = nullptr;
+  CLI::Option* scenario_seed_option = nullptr;
+  CLI::App* run_cmd = nullptr;
+  CLI::App* sim_cmd = nullptr;
+  CLI::App* drive_cmd = nullptr;
+  CLI::App* calibrate_cmd = nullptr;
+  CLI::App* soak_cmd = nullptr;
+  CLI::App* replay_cmd = nullptr;
+};
+
+void add_console_options(CLI::App* cmd, runner::ConsoleArgs& c) {
+  cmd->add_option("--listen", c.listen, "the console's ADDR:PORT (default: [console] listen)");
+  cmd->add_option("--token", c.token,
+                  "the console's access token (others see it in ps: prefer --token-file or "
+                  "$MARSOKHOD_TOKEN; default: [console] token, or generated)");
+  cmd->add_option("--token-file", c.token_file,
+                  "read the console's access token from FILE (mode 0600)");
+  cmd->add_option("--web", c.web, "the console's build folder (default web/dist)");
+  cmd->add_flag("--no-console", c.no_console, "no HTTP/WebSocket server");
+  cmd->add_option("--status-rate", c.status_rate_hz, "status messages per second")
+      ->check(CLI::Range(1.0, 64.0));
+}
+
+void add_offline_commands(CLI::App& cli, Commands& c) {
+  DecodeArgs& decode = c.decode;
+  c.decode_cmd =
+      cli.add_subcommand("decode", "decode a CAN trace in candump log format, one frame a line");
+  c.decode_cmd->add_option("FILE", decode.file, "candump log file, or - for standard input")
+      ->required();
+  c.decode_cmd->add_flag("--json", decode.json, "print one JSON object a line");
+
+  ScenarioArgs& scenario = c.scenario;
+  CLI::App* cmd = c.scenario_cmd = cli.add_subcommand(
+      "scenario", "run a scenario headless, faster than real time, and check its results");
+  cmd->add_option("NAME", scenario.name, "a shipped scenario's name, or a scenario file");
+  c.scenario_seed_option =
+      cmd->add_option("--seed", c.scenario_seed, "the simulator's seed")->check(kSeed);
+  cmd->add_option("--out", scenario.out,
+                  "write can.log, operator.jsonl, telemetry.csv and plots here");
+  cmd->add_flag("--json", scenario.json, "print one JSON object");
+  cmd->add_flag("--list", scenario.list, "name the shipped scenarios");
+  cmd->add_flag("--no-plots", scenario.no_plots, "skip the gnuplot PNGs");
+  cmd->add_flag("--all", scenario.all, "every shipped scenario (a sweep)");
+  cmd->add_option("--seeds", scenario.seeds,
+                  "a sweep over the seeds A-B (each seed a different rover unit)");
+  cmd->add_option("--jobs", scenario.jobs, "runs at once in a sweep (default: one per core)")
+      ->check(CLI::Range(1, 256));
+}
+
+void add_soak_and_replay(CLI::App& cli, Commands& c) {
+  c.soak_cmd = add_soak_command(cli, c.soak);
+  c.replay_cmd = cli.add_subcommand(
+      "replay", "re-run the driver over a recording and compare every request, bit for bit");
+  c.replay_cmd->add_option("DIR", c.replay_dir, "a scenario's --out folder")->required();
+}
+
+void add_live_commands(CLI::App& cli, Commands& c) {
+  runner::RunArgs& run = c.run;
+  CLI::App* run_cmd = c.run_cmd = cli.add_subcommand(
       "run", "the simulated rover and the driver in real time, with the console (the default)");
-  auto add_console = [](CLI::App* cmd, runner::ConsoleArgs& c) {
-    cmd->add_option("--listen", c.listen, "the console's ADDR:PORT (default: [console] listen)");
-    cmd->add_option("--token", c.token,
-                    "the console's access token (others see it in ps: prefer --token-file or "
-                    "$MARSOKHOD_TOKEN; default: [console] token, or generated)");
-    cmd->add_option("--token-file", c.token_file,
-                    "read the console's access token from FILE (mode 0600)");
-    cmd->add_option("--web", c.web, "the console's build folder (default web/dist)");
-    cmd->add_flag("--no-console", c.no_console, "no HTTP/WebSocket server");
-    cmd->add_option("--status-rate", c.status_rate_hz, "status messages per second")
-        ->check(CLI::Range(1.0, 64.0));
-  };
-  add_console(run_cmd, run.console);
+  add_console_options(run_cmd, run.console);
   run_cmd->add_option("--scenario", run.scenario, "terrain and faults from a scenario file")
       ->check(CLI::ExistingFile);
   run_cmd->add_option("--seed", run.seed, "the simulator's seed")->check(kSeed);
@@ -137,8 +158,9 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   run_cmd->add_option("--record", run.record, "write can.log, operator.jsonl and telemetry.csv here");
   run_cmd->add_flag("--quiet", run.quiet, "no status line in the terminal");
 
-  runner::SimArgs sim;
-  CLI::App* sim_cmd = cli.add_subcommand("sim", "the simulated rover alone, served over socketcand");
+  runner::SimArgs& sim = c.sim;
+  CLI::App* sim_cmd = c.sim_cmd =
+      cli.add_subcommand("sim", "the simulated rover alone, served over socketcand");
   sim_cmd->add_option("--listen", sim.listen, "ADDR:PORT (default 127.0.0.1:29536)");
   sim_cmd->add_option("--channel", sim.channel, "the bus' channel name (default can0)");
   sim_cmd->add_option("--scenario", sim.scenario, "terrain and faults from a scenario file")
@@ -147,66 +169,52 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
   sim_cmd->add_option("--duration", sim.duration_s, "stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
 
-  runner::DriveArgs drive;
-  CLI::App* drive_cmd = cli.add_subcommand("drive", "the driver on a real or remote bus, with the console");
+  runner::DriveArgs& drive = c.drive;
+  CLI::App* drive_cmd = c.drive_cmd =
+      cli.add_subcommand("drive", "the driver on a real or remote bus, with the console");
   drive_cmd->add_option("--can", drive.can, "socketcan:can0 or socketcand://HOST:PORT/CHANNEL")
       ->required();
-  add_console(drive_cmd, drive.console);
+  add_console_options(drive_cmd, drive.console);
   drive_cmd->add_option("--duration", drive.duration_s, "stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
   drive_cmd->add_flag("--quiet", drive.quiet, "no status line in the terminal");
+}
 
-  CalibrateArgs calibrate;
-  CLI::App* calibrate_cmd = cli.add_subcommand(
+void add_calibrate_command(CLI::App& cli, Commands& c) {
+  CalibrateArgs& calibrate = c.calibrate;
+  CLI::App* cmd = c.calibrate_cmd = cli.add_subcommand(
       "calibrate", "run a calibration procedure of the thesis and write the calibration file");
-  calibrate_cmd->add_option("PROCEDURE", calibrate.procedure,
-                            "accelerometer, voltage, joints, motor-curve, motor-scale, response, "
-                            "load, spin or voltage-drop (--list describes them)");
-  calibrate_cmd->add_flag("--list", calibrate.list, "name the procedures");
-  calibrate_cmd->add_flag("--sim", calibrate.sim, "on the simulated rover (a laboratory bench)");
-  calibrate_cmd->add_option("--can", calibrate.can,
-                            "on a real or remote bus: socketcan:can0 or socketcand://HOST:PORT/CHANNEL");
-  calibrate_cmd->add_option("--out", calibrate.out, "the calibration file (default calibration.toml)");
-  calibrate_cmd->add_flag("--force", calibrate.force,
-                          "update an existing calibration file (other procedures' values are kept)");
-  calibrate_cmd->add_option("--plot", calibrate.plot, "write the measured data and plots here");
-  calibrate_cmd->add_option("--seed", calibrate.seed, "the simulated unit (--sim)")->check(kSeed);
-  calibrate_cmd->add_option("--duration", calibrate.duration_s,
-                            "how long to measure [s] (motor-scale, response, voltage)")
+  cmd->add_option("PROCEDURE", calibrate.procedure,
+                  "accelerometer, voltage, joints, motor-curve, motor-scale, response, "
+                  "load, spin or voltage-drop (--list describes them)");
+  cmd->add_flag("--list", calibrate.list, "name the procedures");
+  cmd->add_flag("--sim", calibrate.sim, "on the simulated rover (a laboratory bench)");
+  cmd->add_option("--can", calibrate.can,
+                  "on a real or remote bus: socketcan:can0 or socketcand://HOST:PORT/CHANNEL");
+  cmd->add_option("--out", calibrate.out, "the calibration file (default calibration.toml)");
+  cmd->add_flag("--force", calibrate.force,
+                "update an existing calibration file (other procedures' values are kept)");
+  cmd->add_option("--plot", calibrate.plot, "write the measured data and plots here");
+  cmd->add_option("--seed", calibrate.seed, "the simulated unit (--sim)")->check(kSeed);
+  cmd->add_option("--duration", calibrate.duration_s,
+                  "how long to measure [s] (motor-scale, response, voltage)")
       ->check(CLI::PositiveNumber);
-  calibrate_cmd->add_option("--icr", calibrate.icr, "the PWM period register (motor-curve, load)")
+  cmd->add_option("--icr", calibrate.icr, "the PWM period register (motor-curve, load)")
       ->check(CLI::Range(255, 2047));
-  calibrate_cmd->add_option("--from", calibrate.from,
-                            "voltage-drop: a scenario's --out folder with telemetry.csv")
+  cmd->add_option("--from", calibrate.from,
+                  "voltage-drop: a scenario's --out folder with telemetry.csv")
       ->check(CLI::ExistingDirectory);
+}
 
-  SoakArgs soak;
-  CLI::App* soak_cmd = add_soak_command(cli, soak);
-
-  std::string replay_dir;
-  CLI::App* replay_cmd = cli.add_subcommand(
-      "replay", "re-run the driver over a recording and compare every request, bit for bit");
-  replay_cmd->add_option("DIR", replay_dir, "a scenario's --out folder")->required();
-
-  try {
-    cli.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    out << cli.help();
-    return 0;
-  } catch (const CLI::CallForAllHelp& e) {
-    out << cli.help("", CLI::AppFormatMode::All);
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    err << "marsokhod: " << e.what() << " (see marsokhod --help)\n";
-    return kUsageError;
-  }
-
+// The configuration, and the calibration file on top for the driver (--calibration, else
+// $MARSOKHOD_CALIBRATION). 0, or kUsageError with one line on `err`.
+int load_config(const std::string& config_file, std::string calibration_file,
+                config::LoadedConfig& loaded, std::ostream& err) {
   const auto config_path = find_config(config_file);
   if (!config_path) {
     err << "marsokhod: no configuration file: pass --config FILE or set MARSOKHOD_CONFIG\n";
     return kUsageError;
   }
-  config::LoadedConfig loaded;
   loaded.config_file = *config_path;
   if (calibration_file.empty()) {
     if (const char* env = std::getenv("MARSOKHOD_CALIBRATION"); env != nullptr && *env != '\0') {
@@ -229,32 +237,82 @@ int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& o
     err << "marsokhod: " << e.what() << "\n";
     return kUsageError;
   }
+  return 0;
+}
+
+int run_scenario(Commands& c, const config::LoadedConfig& loaded, std::ostream& out,
+                 std::ostream& err) {
+  ScenarioArgs& scenario = c.scenario;
+  const bool seed_given = c.scenario_seed_option->count() > 0;
+  if (seed_given) scenario.seed = c.scenario_seed;
+  if (seed_given && (scenario.all || !scenario.seeds.empty())) {
+    err << "marsokhod scenario: --seed names one run; a sweep takes --seeds A-B\n";
+    return kUsageError;
+  }
+  std::error_code ec;
+  scenario.program = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+  scenario.progress = &err == &std::cerr && ::isatty(2) == 1;
+  return run_scenario_command(scenario, loaded, out, err);
+}
+
+int dispatch(Commands& c, const config::LoadedConfig& loaded, std::istream& in,
+             std::ostream& out, std::ostream& err) {
   const Params& params = loaded.params;
-  if (decode_cmd->parsed()) return run_decode(decode, params, in, out, err);
-  if (scenario_cmd->parsed()) {
-    if (seed_option->count() > 0) scenario.seed = seed;
-    if (seed_option->count() > 0 && (scenario.all || !scenario.seeds.empty())) {
-      err << "marsokhod scenario: --seed names one run; a sweep takes --seeds A-B\n";
-      return kUsageError;
-    }
-    std::error_code ec;
-    scenario.program = std::filesystem::read_symlink("/proc/self/exe", ec).string();
-    scenario.progress = &err == &std::cerr && ::isatty(2) == 1;
-    return run_scenario_command(scenario, loaded, out, err);
+  if (c.decode_cmd->parsed()) return run_decode(c.decode, params, in, out, err);
+  if (c.scenario_cmd->parsed()) return run_scenario(c, loaded, out, err);
+  if (c.soak_cmd->parsed()) return run_soak_command(c.soak, loaded, out, err);
+  if (c.calibrate_cmd->parsed()) return run_calibrate_command(c.calibrate, loaded, in, out, err);
+  if (c.replay_cmd->parsed()) return run_replay_command(c.replay_dir, params, out, err);
+  if (c.run_cmd->parsed()) {
+    c.run.console.web = find_web_dist(c.run.console.web);
+    return runner::run_live(c.run, loaded, out, err);
   }
-  if (soak_cmd->parsed()) return run_soak_command(soak, loaded, out, err);
-  if (calibrate_cmd->parsed()) return run_calibrate_command(calibrate, loaded, in, out, err);
-  if (replay_cmd->parsed()) return run_replay_command(replay_dir, params, out, err);
-  if (run_cmd->parsed()) {
-    run.console.web = find_web_dist(run.console.web);
-    return runner::run_live(run, loaded, out, err);
-  }
-  if (sim_cmd->parsed()) return runner::run_sim(sim, loaded.nominal, out, err);
-  if (drive_cmd->parsed()) {
-    drive.console.web = find_web_dist(drive.console.web);
-    return runner::run_drive(drive, loaded, out, err);
+  if (c.sim_cmd->parsed()) return runner::run_sim(c.sim, loaded.nominal, out, err);
+  if (c.drive_cmd->parsed()) {
+    c.drive.console.web = find_web_dist(c.drive.console.web);
+    return runner::run_drive(c.drive, loaded, out, err);
   }
   return kUsageError;
+}
+
+}  // namespace
+
+int run_cli(int argc, const char* const* argv, std::istream& in, std::ostream& out,
+            std::ostream& err) {
+  CLI::App cli{"marsokhod: control stack and simulator for the Marsokhod rover", "marsokhod"};
+  cli.require_subcommand(1);
+  std::string config_file;
+  cli.add_option("--config", config_file,
+                 "configuration file (default: $MARSOKHOD_CONFIG, ./config/marsokhod.toml)")
+      ->check(CLI::ExistingFile);
+  std::string calibration_file;
+  cli.add_option("--calibration", calibration_file,
+                 "a calibration file (marsokhod calibrate) loaded on top of the configuration "
+                 "for the driver (default: $MARSOKHOD_CALIBRATION, else none)")
+      ->check(CLI::ExistingFile);
+  Commands commands;
+  add_offline_commands(cli, commands);
+  add_live_commands(cli, commands);
+  add_calibrate_command(cli, commands);
+  add_soak_and_replay(cli, commands);
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    out << cli.help();
+    return 0;
+  } catch (const CLI::CallForAllHelp& e) {
+    out << cli.help("", CLI::AppFormatMode::All);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    err << "marsokhod: " << e.what() << " (see marsokhod --help)\n";
+    return kUsageError;
+  }
+  config::LoadedConfig loaded;
+  if (const int status = load_config(config_file, calibration_file, loaded, err); status != 0) {
+    return status;
+  }
+  return dispatch(commands, loaded, in, out, err);
 }
 
 }  // namespace marsokhod::app

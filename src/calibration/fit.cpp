@@ -83,12 +83,16 @@ LineFit fit_line(std::span<const double> x, std::span<const double> y) {
   return fit;
 }
 
-LeastSquaresFit fit_least_squares(const std::vector<std::vector<double>>& rows,
-                                  std::span<const double> y) {
+namespace {
+
+using Columns = std::vector<std::vector<double>>;
+
+// A column-major copy of the m × n matrix `rows` (m ≥ n ≥ 1, every row n long, all finite).
+Columns column_major(const std::vector<std::vector<double>>& rows, std::size_t measurements) {
   const std::size_t m = rows.size();
-  if (m != y.size()) {
+  if (m != measurements) {
     throw std::invalid_argument("least squares: " + std::to_string(m) + " rows for " +
-                                std::to_string(y.size()) + " measurements");
+                                std::to_string(measurements) + " measurements");
   }
   if (m == 0) throw std::invalid_argument("least squares: no rows");
   const std::size_t n = rows.front().size();
@@ -97,8 +101,7 @@ LeastSquaresFit fit_least_squares(const std::vector<std::vector<double>>& rows,
     throw std::invalid_argument("least squares: " + std::to_string(m) + " rows for " +
                                 std::to_string(n) + " unknowns");
   }
-  // Column-major copy of A and a copy of y, reduced in place by Householder reflections.
-  std::vector<std::vector<double>> a(n, std::vector<double>(m));
+  Columns a(n, std::vector<double>(m));
   for (std::size_t i = 0; i < m; ++i) {
     if (rows[i].size() != n) {
       throw std::invalid_argument("least squares: row " + std::to_string(i) + " has " +
@@ -108,8 +111,14 @@ LeastSquaresFit fit_least_squares(const std::vector<std::vector<double>>& rows,
     for (std::size_t j = 0; j < n; ++j) a[j][i] = rows[i][j];
   }
   for (const auto& column : a) require_finite(column, "least squares: a matrix entry");
-  require_finite(y, "least squares: a measurement");
-  std::vector<double> b(y.begin(), y.end());
+  return a;
+}
+
+// Householder reflections, in place: A to upper triangular R, b to Qᵀb. Throws for a column
+// that is (numerically) a combination of the previous ones.
+void householder_reduce(Columns& a, std::vector<double>& b) {
+  const std::size_t n = a.size();
+  const std::size_t m = b.size();
   std::vector<double> column_norm(n);
   for (std::size_t j = 0; j < n; ++j) {
     double s = 0.0;
@@ -141,6 +150,18 @@ LeastSquaresFit fit_least_squares(const std::vector<std::vector<double>>& rows,
     for (std::size_t j = k; j < n; ++j) reflect(a[j]);
     reflect(b);
   }
+}
+
+}  // namespace
+
+LeastSquaresFit fit_least_squares(const std::vector<std::vector<double>>& rows,
+                                  std::span<const double> y) {
+  Columns a = column_major(rows, y.size());
+  require_finite(y, "least squares: a measurement");
+  std::vector<double> b(y.begin(), y.end());
+  householder_reduce(a, b);
+  const std::size_t n = a.size();
+  const std::size_t m = b.size();
   LeastSquaresFit fit;
   fit.coefficients.assign(n, 0.0);
   for (std::size_t k = n; k-- > 0;) {

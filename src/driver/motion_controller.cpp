@@ -253,9 +253,8 @@ MotorVector MotionController::to_duty(const MotorVector& w_hat, const MotionInpu
   return duty;
 }
 
-MotorVector MotionController::update(const MotionInput& input, const RuntimeSettings& settings,
-                                     DriverStatus& status) {
-  track(input, status);
+void MotionController::update_duty_bound(const MotionInput& input,
+                                         const RuntimeSettings& settings, DriverStatus& status) {
   // (6.3): D from the last duty cycles sent and the loads they met, a growing one a cycle ahead.
   PowerParams power = params_->power;
   power.max_drop_v = settings.max_drop_v;
@@ -266,6 +265,11 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   status.max_duty = behaviour::next_duty_bound(
       last_duty_, behaviour::anticipated_loads_radps(load_, previous_load_), power,
       settings.switches, drop_excess_.excess_v());
+}
+
+behaviour::JointBounds MotionController::update_slope_and_bounds(const MotionInput& input,
+                                                                 const RuntimeSettings& settings,
+                                                                 DriverStatus& status) {
   // 6.2.1: gravity, slope σ and the joint bounds (6.4).
   const auto& a = input.accel_mps2;
   if (std::hypot(a[0], a[1], a[2]) > 0.1 * params_->sensors.gravity_mps2) {
@@ -286,11 +290,14 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
                            status);
   status.joint_bounds = {bounds.front_min_rad, bounds.front_max_rad, bounds.rear_min_rad,
                          bounds.rear_max_rad};
-  // Remark 5.5, then the motions of (5.4).
-  intent_ = mobility::driving_intent(intent_, input.targets.v1_radps);
-  const MotorVector driving = ramp_driving(input, settings, status);
-  JointCommands joints =
-      input.stopping ? stopping_joint_commands() : joint_commands(input, settings, status);
+  return bounds;
+}
+
+MotorVector MotionController::walking_motion(JointCommands joints,
+                                             const behaviour::JointBounds& bounds,
+                                             const MotionInput& input,
+                                             const RuntimeSettings& settings,
+                                             DriverStatus& status) {
   const double h = input.period_s;
   const auto front_place = behaviour::next_axle_placement(
       front_placement_, joints.factors.front, load_[kFrontJoint],
@@ -319,12 +326,26 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
                                          status.motors[motor].position_rad,
                                          params_->motors.backlash_rad[motor]);
   };
-  const MotorVector walking = mobility::walking_motion(
-      {p6, p7, joints.front_radps, joints.rear_radps,
+  return mobility::walking_motion(
+      {status.motors[kFrontJoint].position_rad, status.motors[kRearJoint].position_rad,
+       joints.front_radps, joints.rear_radps,
        assigned_joint_velocity(kFrontJoint, joints.front_radps),
        assigned_joint_velocity(kRearJoint, joints.rear_radps), front_place.placement,
        rear_place.placement},
       params_->geometry);
+}
+
+MotorVector MotionController::update(const MotionInput& input, const RuntimeSettings& settings,
+                                     DriverStatus& status) {
+  track(input, status);
+  update_duty_bound(input, settings, status);
+  const behaviour::JointBounds bounds = update_slope_and_bounds(input, settings, status);
+  // Remark 5.5, then the motions of (5.4).
+  intent_ = mobility::driving_intent(intent_, input.targets.v1_radps);
+  const MotorVector driving = ramp_driving(input, settings, status);
+  const JointCommands joints =
+      input.stopping ? stopping_joint_commands() : joint_commands(input, settings, status);
+  const MotorVector walking = walking_motion(joints, bounds, input, settings, status);
   // (5.4)–(5.6) under D, then the load distribution h (6.5)/(6.6) within the same bounds.
   const MotorVector limit = mobility::motor_velocity_bounds(
       params_->motors.scale, status.max_duty, curve_, input.supply_v,

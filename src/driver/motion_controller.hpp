@@ -71,6 +71,16 @@ class MotionController {
                                               const DriverStatus& status) const;
   JointCommands joint_commands(const MotionInput& input, const RuntimeSettings& settings,
                                DriverStatus& status);
+  // Step 4's parts: D of (6.3); σ and the joint bounds (6.4) with the backlash margin.
+  void update_duty_bound(const MotionInput& input, const RuntimeSettings& settings,
+                         DriverStatus& status);
+  behaviour::JointBounds update_slope_and_bounds(const MotionInput& input,
+                                                 const RuntimeSettings& settings,
+                                                 DriverStatus& status);
+  // The joints' commands kept inside `bounds`, axle placement, and the walking motion of (5.4).
+  MotorVector walking_motion(JointCommands joints, const behaviour::JointBounds& bounds,
+                             const MotionInput& input, const RuntimeSettings& settings,
+                             DriverStatus& status);
   MotorVector ramp_driving(const MotionInput& input, const RuntimeSettings& settings,
                            DriverStatus& status);
   MotorVector to_duty(const MotorVector& w_hat, const MotionInput& input) const;
