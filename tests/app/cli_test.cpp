@@ -1,4 +1,5 @@
 #include "app/cli.hpp"
+#include "cli_runner.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,20 +24,8 @@
 namespace marsokhod::app {
 namespace {
 
-struct Result {
-  int status = 0;
-  std::string out;
-  std::string err;
-};
-
-Result cli(std::vector<const char*> args, const std::string& stdin_text = "") {
-  args.insert(args.begin(), "marsokhod");
-  std::istringstream in(stdin_text);
-  std::ostringstream out;
-  std::ostringstream err;
-  const int status = run_cli(static_cast<int>(args.size()), args.data(), in, out, err);
-  return {status, out.str(), err.str()};
-}
+using test::cli;
+using test::Result;
 
 const std::string kConfig = std::string(MARSOKHOD_SOURCE_DIR) + "/config/marsokhod.toml";
 

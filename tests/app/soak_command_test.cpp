@@ -11,25 +11,15 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli.hpp"
+#include "cli_runner.hpp"
 #include "config/load_params.hpp"
 #include "runner/soak.hpp"
 
 namespace marsokhod::app {
 namespace {
 
-struct Result {
-  int status = 0;
-  std::string out;
-  std::string err;
-};
-
-Result cli(std::vector<const char*> args) {
-  args.insert(args.begin(), "marsokhod");
-  std::istringstream in;
-  std::ostringstream out, err;
-  const int status = run_cli(static_cast<int>(args.size()), args.data(), in, out, err);
-  return {status, out.str(), err.str()};
-}
+using test::cli;
+using test::Result;
 
 const std::string kConfig = std::string(MARSOKHOD_SOURCE_DIR) + "/config/marsokhod.toml";
 
