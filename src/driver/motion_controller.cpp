@@ -112,7 +112,6 @@ void MotionController::track(const MotionInput& input, DriverStatus& status) {
   const MotorVector p = backlash_.joint_position_rad();
   // (4.4) one cycle late (driver_estimator): the history of the commands sent is all it needs.
   const MotorVector nu = estimator_.no_load_velocity_radps();
-  previous_load_ = load_;
   load_ = adaptation::load(w, nu);
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     MotorStatus& m = status.motors[i];
@@ -255,16 +254,16 @@ MotorVector MotionController::to_duty(const MotorVector& w_hat, const MotionInpu
 
 void MotionController::update_duty_bound(const MotionInput& input,
                                          const RuntimeSettings& settings, DriverStatus& status) {
-  // (6.3): D from the last duty cycles sent and the loads they met, a growing one a cycle ahead.
+  // (6.3): D from the last duty cycles sent and the loads they met, and the measured drop
+  // beyond what (4.5) makes of them.
   PowerParams power = params_->power;
   power.max_drop_v = settings.max_drop_v;
   if (input.reference_supply_v > 1.0 && input.period_s > 0.0) {
     drop_excess_.update(input.reference_supply_v - input.supply_v,
                         adaptation::voltage_drop_v(last_duty_, load_, power), input.period_s);
   }
-  status.max_duty = behaviour::next_duty_bound(
-      last_duty_, behaviour::anticipated_loads_radps(load_, previous_load_), power,
-      settings.switches, drop_excess_.excess_v());
+  status.max_duty = behaviour::next_duty_bound(last_duty_, load_, power, settings.switches,
+                                               drop_excess_.excess_v());
 }
 
 behaviour::JointBounds MotionController::update_slope_and_bounds(const MotionInput& input,

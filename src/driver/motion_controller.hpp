@@ -103,7 +103,6 @@ class MotionController {
   std::array<double, 2> joint_velocity_{};
   MotorVector last_duty_{};
   MotorVector load_{};
-  MotorVector previous_load_{};  // l^(k−1), for the loads (6.3) anticipates
   behaviour::MeasuredDropExcess drop_excess_;  // what (4.5) leaves out of the measured drop
 };
 

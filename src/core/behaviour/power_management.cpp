@@ -75,15 +75,4 @@ double MeasuredDropExcess::update(double measured_drop_v, double modelled_drop_v
   return excess_v_;
 }
 
-MotorVector anticipated_loads_radps(const MotorVector& loads_radps,
-                                    const MotorVector& previous_loads_radps) {
-  MotorVector anticipated = loads_radps;
-  for (std::size_t i = 0; i < kMotorCount; ++i) {
-    if (std::abs(loads_radps[i]) > std::abs(previous_loads_radps[i])) {
-      anticipated[i] = 2.0 * loads_radps[i] - previous_loads_radps[i];
-    }
-  }
-  return anticipated;
-}
-
 }  // namespace marsokhod::behaviour

@@ -49,9 +49,9 @@ double next_duty_bound(const MotorVector& duties, const MotorVector& loads_radps
 
 // Feedback from the measured drop: (6.3) steers by the model (4.5), ξ Σ|d| + Ξ Σ l², and the
 // model can be low — in a spin on the spot the wheels' skid loads draw more current than Ξ Σ l²
-// says (seen in the simulator: 1.83 V measured where (4.5) gave 1.42 V), and a battery sagging
-// under a fault or the cold has a higher internal resistance than ξ, Ξ were fitted on. Each
-// cycle the excess of the measured drop over the modelled one,
+// says (seen in the simulator: 1.54–1.67 V measured for ten cycles where (4.5) gave 1.50 V),
+// and a battery sagging under a fault or the cold has a higher internal resistance than ξ, Ξ
+// were fitted on. Each cycle the excess of the measured drop over the modelled one,
 //   ε^k = max(0, (Ū − U)^k − (ξ Σ|d^(k−1)| + Ξ Σ (l^k)²)),
 // is taken at once when it grows and released with the time constant kDropExcessReleaseS when
 // it shrinks, and (6.3) budgets for it. Where the model is high (the usual case: the duty term
@@ -71,13 +71,5 @@ class MeasuredDropExcess {
   double excess_v_ = 0.0;
 };
 
-// The loads (6.3) should budget for: D^(k+1) acts on the duties sent in cycle k + 1, which meet
-// the loads of cycle k + 1, but (6.3) only knows l^k. A growing load is extrapolated one cycle,
-// l̂_i = l_i^k + (l_i^k − l_i^(k−1)) where |l_i^k| > |l_i^(k−1)|; a steady or shrinking one is
-// taken as it is (l̂_i = l_i^k). A wheel striking a stone loads the motors within 2–3 cycles, and
-// the loads computed from the measured speeds (l = w − ν, (4.4)) trail the current the battery
-// already delivers; without the step ahead (6.3) let the drop pass Υ + 0.3 V on some units.
-MotorVector anticipated_loads_radps(const MotorVector& loads_radps,
-                                    const MotorVector& previous_loads_radps);
 
 }  // namespace marsokhod::behaviour

@@ -163,19 +163,6 @@ TEST(PowerManagement, MeasuredDropExcessAttacksAtOnceAndReleasesSlowly) {
   EXPECT_NEAR(excess.excess_v(), 0.5, kTolerance);
 }
 
-// A growing load is taken a cycle ahead, a steady or shrinking one as it is:
-// l^(k−1) = (0.1, −0.2, 0.3, 0.3, …), l^k = (0.2, −0.3, 0.1, 0.3, …) → (0.3, −0.4, 0.1, 0.3, …).
-TEST(PowerManagement, AnticipatesOnlyGrowingLoads) {
-  const MotorVector previous{0.1, -0.2, 0.3, 0.3, 0.0, 0.0, 0.0, 0.0};
-  const MotorVector now{0.2, -0.3, 0.1, 0.3, 0.0, 0.0, 0.0, 0.0};
-  const MotorVector ahead = anticipated_loads_radps(now, previous);
-  EXPECT_NEAR(ahead[0], 0.3, kTolerance);
-  EXPECT_NEAR(ahead[1], -0.4, kTolerance);
-  EXPECT_DOUBLE_EQ(ahead[2], 0.1);
-  EXPECT_DOUBLE_EQ(ahead[3], 0.3);
-  EXPECT_DOUBLE_EQ(ahead[4], 0.0);
-}
-
 TEST(PowerManagement, RejectsInvalidInputsByName) {
   const BehaviourSwitches on;
   MotorVector duties{};
