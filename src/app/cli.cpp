@@ -178,6 +178,9 @@ void add_live_commands(CLI::App& cli, Commands& c) {
   drive_cmd->add_option("--duration", drive.duration_s, "stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
   drive_cmd->add_flag("--quiet", drive.quiet, "no status line in the terminal");
+  drive_cmd->add_option("--joint-memory", drive.joint_memory,
+                        "keep the joints' state in FILE, so that a driver restarted after a "
+                        "brown-out continues from it instead of taking the joints vertical");
 }
 
 void add_calibrate_command(CLI::App& cli, Commands& c) {

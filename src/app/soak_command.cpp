@@ -60,12 +60,14 @@ void print_summary(const runner::SoakResult& r, std::ostream& out) {
   out << line;
   std::snprintf(line, sizeof line,
                 "invariants checked: %llu over %llu cycles; joints at most %.4f rad outside (5.3)\n"
-                "joints the driver could not know (lost pulses, lost by a restart): the truth at "
-                "most %.4f rad outside (5.3)\n"
+                "joints the driver could not know (lost pulses): the truth at most %.4f rad "
+                "outside (5.3)\n"
+                "joints a restarted driver found outside (5.3) (left by the brown-out): at most "
+                "%.4f rad\n"
                 "violations: %llu\n",
                 static_cast<unsigned long long>(r.evaluations),
                 static_cast<unsigned long long>(r.cycles), r.max_joint_excess_rad,
-                r.max_unknown_joint_excess_rad,
+                r.max_unknown_joint_excess_rad, r.max_restart_joint_excess_rad,
                 static_cast<unsigned long long>(r.total_violations()));
   out << line;
   for (std::size_t k = 0; k < runner::kInvariantCount; ++k) {

@@ -275,6 +275,9 @@ constexpr ParamSpec kSafety[] = {
     {.key = "missed_responses_limit", .field = field<&SafetyParams::missed_responses_limit>,
      .min = 1, .max = 1000, .source = "docs/decisions.md",
      .about = "consecutive missing responses of a controller ⇒ fault, stop"},
+    {.key = "joint_memory_max_age_s", .field = field<&SafetyParams::joint_memory_max_age_s>,
+     .min = 0.0, .max = 86400.0, .source = "docs/decisions.md",
+     .about = "a restarted driver continues from a kept joint state at most this old"},
 };
 
 constexpr ParamSpec kConsole[] = {

@@ -185,6 +185,9 @@ struct SafetyParams {
   double max_duty_step = 0.05;             // |d^k − d^(k−1)| per cycle ("must not differ much")
   double direction_change_duty = 0.02;     // drv may toggle only while |d| ≤ this ("pwm ≈ 0")
   int missed_responses_limit = 3;          // consecutive missing responses ⇒ fault, rover stopped
+  // A restarted driver continues from the joint state its predecessor kept only if it is at
+  // most this old (driver/joint_memory.hpp): a brown-out's reboot takes about 30 s.
+  double joint_memory_max_age_s = 300.0;
 };
 
 struct Params {

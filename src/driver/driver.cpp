@@ -24,7 +24,7 @@ const char* mode_name(DriverMode mode) {
   return "?";
 }
 
-Driver::Driver(const Params& params)
+Driver::Driver(const Params& params, std::optional<JointMemory> kept)
     : params_(&params),
       intake_(params.cycle.icr),
       startup_(params),
@@ -32,8 +32,73 @@ Driver::Driver(const Params& params)
       sensors_(params.sensors, params.filters),
       operator_(params),
       motion_(params),
-      runtime_(runtime_settings_from(params)) {
+      runtime_(runtime_settings_from(params)),
+      kept_(std::move(kept)) {
   validate(runtime_);
+  if (kept_) startup_.continue_joints();
+}
+
+std::optional<JointMemory> Driver::joint_memory() const {
+  if (kept_) return kept_;  // not judged yet: pass it on as it came
+  if (!startup_calibrated_) return std::nullopt;
+  JointMemory memory;
+  if (!status_.joints_known) {
+    memory.known = false;
+    return memory;
+  }
+  const tracking::MotorsSample& m = motors_.sample();
+  const MotorVector p = motion_.joint_positions();
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::size_t j = k == 0 ? kFrontJoint : kRearJoint;
+    memory.joints[k].reading = motors_.motor(j).position().last_reading();
+    memory.joints[k].shaft_rad = m.position_rad[j] + position_offset_rad_[j];
+    memory.joints[k].joint_rad = p[j];
+    memory.joints[k].duty = duty_[j];
+  }
+  return memory;
+}
+
+void Driver::take_kept_joints() {
+  if (!kept_ || !motors_.motor(kFrontJoint).started() || !motors_.motor(kRearJoint).started()) {
+    return;
+  }
+  const tracking::MotorsSample& m = motors_.sample();
+  MotorVector positions{};
+  for (std::size_t i = 0; i < kMotorCount; ++i) positions[i] = m.position_rad[i] + position_offset_rad_[i];
+  std::string origin = "kept across a restart (";
+  std::string refused;
+  if (!kept_->known) refused = "the driver before the restart did not know them either";
+  for (std::size_t k = 0; k < 2 && kept_->known; ++k) {
+    const std::size_t j = k == 0 ? kFrontJoint : kRearJoint;
+    std::string why;
+    const auto restored = restore_joint(kept_->joints[k], motors_.motor(j).position().last_reading(),
+                                        params_->motors.backlash_rad[j], *params_, j, why);
+    if (!restored) {
+      refused += (refused.empty() ? "" : "; ") + why;
+      continue;
+    }
+    position_offset_rad_[j] = restored->shaft_rad - m.position_rad[j];
+    positions[j] = restored->joint_rad;
+    char text[64];
+    std::snprintf(text, sizeof text, "%sµ%zu moved %+.4f rad", k == 0 ? "" : ", ", j,
+                  restored->shift_rad);
+    origin += text;
+  }
+  motion_.reset_joint_positions(positions);
+  status_.joints_known = refused.empty();
+  status_.joint_origin = refused.empty() ? origin + " while down)" : "unknown: " + refused;
+  kept_.reset();
+  startup_calibrated_ = true;
+  startup_.take_joints();
+}
+
+// The joints' positions are unknown: nothing may move them (no gait, command or behaviour).
+void Driver::hold_unknown_joints() {
+  targets_.v6_radps = 0.0;
+  targets_.v7_radps = 0.0;
+  targets_.gait = mobility::Gait::kNone;
+  targets_.front_joint_target_rad.reset();
+  targets_.rear_joint_target_rad.reset();
 }
 
 void Driver::set_runtime(const RuntimeSettings& settings) {
@@ -86,6 +151,10 @@ void Driver::update_faults(const OperatorInput* input) {
     status_.warnings.push_back("supply " + std::to_string(status_.supply_v).substr(0, 5) +
                                " V near the brown-out voltage");
   }
+  if (!status_.joints_known) {
+    status_.warnings.push_back("joints held: their positions are " + status_.joint_origin +
+                               "; set them vertical in calibration mode and leave it");
+  }
   if (intake_.counters().malformed > 0) {
     status_.warnings.push_back("malformed frames: " + intake_.counters().last_error);
   }
@@ -117,11 +186,16 @@ void Driver::reset_joint_positions() {
     shaft[j] = params_->motors.initial_position_rad[j];
   }
   motion_.reset_joint_positions(shaft);
+  status_.joints_known = true;
 }
 
 MotorVector Driver::wanted_duties(double time_s, const MotionInput& input) {
   MotorVector wanted{};
-  if (status_.mode == DriverMode::kDriving) return motion_.update(input, runtime_, status_);
+  if (status_.mode == DriverMode::kDriving) {
+    wanted = motion_.update(input, runtime_, status_);
+    if (!status_.joints_known) wanted[kFrontJoint] = wanted[kRearJoint] = 0.0;
+    return wanted;
+  }
   motion_.observe(input, status_);
   if (status_.mode == DriverMode::kStartup && startup_.phase() == StartupPhase::kCalibrate) {
     const auto d = startup_.calibrate(
@@ -154,12 +228,14 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   ++status_.cycle;
 
   take_responses(intake_.take(received, expected_));
+  take_kept_joints();
   status_.bus = intake_.counters();
   if (input != nullptr) {
     const auto rejection = operator_.receive(*input, time_s);
     if (rejection) status_.operator_rejection = *rejection;
   }
   targets_ = operator_.targets(time_s);
+  if (!status_.joints_known) hold_unknown_joints();
   stopping_ = operator_.stopping(time_s);
   status_.operator_timeout = operator_.timed_out(time_s);
   status_.stop_latched = operator_.stop_latched();
@@ -181,10 +257,12 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   if (startup_.phase() == StartupPhase::kDone && !startup_calibrated_) {
     startup_calibrated_ = true;
     reset_joint_positions();  // Procedure 4.3: p⁰ := p̄⁰ of Remark 3.1
+    status_.joint_origin = "Procedure 4.3";
   }
   const bool calibrating = status_.mode == DriverMode::kCalibration;
   if (was_calibrating_ && !calibrating && status_.mode == DriverMode::kDriving) {
     reset_joint_positions();  // the operator left calibration mode
+    status_.joint_origin = "calibration mode (Procedure 4.3)";
   }
   was_calibrating_ = calibrating;
 

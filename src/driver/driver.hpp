@@ -12,8 +12,16 @@
 // missed_responses_limit cycles latches a fault that stops the rover until the operator clears
 // it (OperatorInput::clear_faults) and every controller answers again. Invalid operator inputs
 // are rejected with a reason and the last valid one stands until the timeout.
+//
+// Restarts (joint_memory.hpp): joint_memory() is what to keep of the joints after each cycle; a
+// driver constructed with it continues from there instead of running Procedure 4.3. If the
+// controllers' registers do not continue the kept state, the joints are unknown: the driver
+// drives the wheels but holds the joints (no gait, no joint command, no behaviour moves them)
+// and says so in its warnings until the operator sets them vertical in calibration mode and
+// leaves it (Procedure 4.3 by hand, docs/gamepad.md).
 #pragma once
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -22,6 +30,7 @@
 #include "core/tracking/motor_tracker.hpp"
 #include "core/tracking/sensor_tracker.hpp"
 #include "driver/frame_intake.hpp"
+#include "driver/joint_memory.hpp"
 #include "driver/motion_controller.hpp"
 #include "driver/operator_channel.hpp"
 #include "driver/startup.hpp"
@@ -31,7 +40,8 @@ namespace marsokhod::driver {
 
 class Driver {
  public:
-  explicit Driver(const Params& params);
+  // `kept`: the joint state a previous driver left (a restart); none: a first start.
+  explicit Driver(const Params& params, std::optional<JointMemory> kept = std::nullopt);
 
   // One cycle at time t [s] (strictly increasing). `received`: every frame seen on the bus since
   // the previous step. `input`: the operator's newest message, if one arrived this cycle.
@@ -44,6 +54,10 @@ class Driver {
   const RuntimeSettings& runtime() const { return runtime_; }
   // Throws std::invalid_argument (see validate(RuntimeSettings)); nothing changes then.
   void set_runtime(const RuntimeSettings& settings);
+  // What to keep of the joints after this cycle for a restart: none before Procedure 4.3 has
+  // ended (a restart runs it again); JointMemory::known = false while they are unknown; the
+  // state this driver was given until it has judged it.
+  std::optional<JointMemory> joint_memory() const;
 
  private:
   void take_responses(const CycleResponses& responses);
@@ -51,6 +65,8 @@ class Driver {
   MotionInput motion_input(double period_s) const;
   MotorVector wanted_duties(double time_s, const MotionInput& input);
   void reset_joint_positions();
+  void take_kept_joints();  // a restart: the kept state against the joints' first readings
+  void hold_unknown_joints();
   void encode_requests();
   std::string lcd_text() const;
   bool on_slope() const;  // the accelerometer off the vertical by more than the slant dead band
@@ -72,6 +88,7 @@ class Driver {
   double last_time_s_ = 0.0;
   bool was_calibrating_ = false;
   bool startup_calibrated_ = false;
+  std::optional<JointMemory> kept_;  // until the joints' first readings judge it
   bool stopping_ = false;  // the operator's stop or timeout is in force
   std::vector<protocol::CanFrame> requests_;
 };

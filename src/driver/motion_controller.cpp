@@ -95,8 +95,8 @@ MotionController::MotionController(const Params& params)
       gait_(params.geometry, joints_, params.gaits, params.motors),
       gravity_(params.sensors.gravity_mps2) {}
 
-void MotionController::reset_joint_positions(const MotorVector& shaft_position_rad) {
-  backlash_.reset(shaft_position_rad);
+void MotionController::reset_joint_positions(const MotorVector& position_rad) {
+  backlash_.reset(position_rad);
   joint_velocity_ = {};
   estimator_ = driver_estimator(*params_);
 }

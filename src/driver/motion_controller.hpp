@@ -46,8 +46,11 @@ class MotionController {
  public:
   explicit MotionController(const Params& params);
 
-  // Procedure 4.3's end: the joints' p = p̄ = Remark 3.1's positions; history cleared.
-  void reset_joint_positions(const MotorVector& shaft_position_rad);
+  // Procedure 4.3's end: the joints' p = p̄ = Remark 3.1's positions; history cleared. A
+  // restart continuing from a kept state (joint_memory.hpp) gives each joint's p instead.
+  void reset_joint_positions(const MotorVector& position_rad);
+  // p of (4.1) for the eight motors, as the last cycle left it.
+  MotorVector joint_positions() const { return backlash_.joint_position_rad(); }
 
   // One driving cycle: the duty cycles wanted (before the slew rules); fills `status`.
   MotorVector update(const MotionInput& input, const RuntimeSettings& settings,

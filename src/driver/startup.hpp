@@ -20,6 +20,9 @@
 //      below the truth by at most 2·uncertainty·b, on the safe side of the negative bounds, and
 //      exactly uncertainty·b above it on the positive side, which joint_margin.hpp covers;
 //   4. driving.
+// A driver restarted with a kept joint state (joint_memory.hpp) skips Procedure 4.3: the joints
+// are not vertical then. It waits in phase 3 with the joints at rest until the driver has taken
+// the joints' positions from their first readings (take_joints()), and is done.
 // Pure: the phase advances on the responses it is shown and on time given as a value.
 #pragma once
 
@@ -48,6 +51,12 @@ class Startup {
   StartupPhase phase() const { return phase_; }
   bool configured(std::size_t motor) const { return configured_.at(motor); }
 
+  // Phase 3 without Procedure 4.3: the joints come from a kept state (see above).
+  void continue_joints() { continue_joints_ = true; }
+  bool continues_joints() const { return continue_joints_; }
+  // The kept state was judged (restored or refused): phase 3 ends when continue_joints().
+  void take_joints();
+
   // Phase 1: the controllers that answered 0xi3 this cycle.
   void on_configured(std::size_t motor);
   // Phase 2: µ8 answered 0x83.
@@ -66,6 +75,8 @@ class Startup {
   const Params* params_;
   StartupPhase phase_ = StartupPhase::kConfigure;
   std::array<bool, kMotorCount> configured_{};
+  bool continue_joints_ = false;
+  bool joints_taken_ = false;
   bool calibration_started_ = false;
   double calibration_start_s_ = 0.0;
   std::array<double, 2> shaft_start_rad_{};

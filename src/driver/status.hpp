@@ -68,6 +68,11 @@ struct DriverStatus {
   double front_axle_factor = 0.0;   // ρf
   double rear_axle_factor = 0.0;    // ρr
   JointBoundsStatus joint_bounds;
+  // Where the joints' positions come from: "Procedure 4.3", "calibration mode", "kept across a
+  // restart (µ6 moved +0.0012 rad, µ7 0.0000 rad while down)" or "unknown: <why>"; while
+  // joints_known is false the joints are held (driver.hpp).
+  bool joints_known = true;
+  std::string joint_origin;
   // Safety.
   bool operator_timeout = true;
   std::string operator_rejection;   // the latest invalid operator input's reason

@@ -81,6 +81,8 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
       {"front_axle_factor", s.front_axle_factor},
       {"rear_axle_factor", s.rear_axle_factor},
       {"joint_bounds", joint_bounds_json(s.joint_bounds)},
+      {"joints_known", s.joints_known},
+      {"joint_origin", s.joint_origin},
       {"operator_timeout", s.operator_timeout},
       {"operator_rejection", s.operator_rejection},
       {"stop_latched", s.stop_latched},

@@ -15,6 +15,7 @@
 #include "driver/driver.hpp"
 #include "link/listen_address.hpp"
 #include "link/status_json.hpp"
+#include "runner/joint_memory_file.hpp"
 #include "runner/live_pacing.hpp"
 #include "runner/recorder.hpp"
 #include "runner/scenario.hpp"
@@ -104,8 +105,9 @@ class SimulatedBus final : public LiveBus {
 // `drive`: the driver on a CAN transport; the frames that arrive until a cycle is due are its.
 class TransportBus final : public LiveBus {
  public:
-  TransportBus(const Params& params, bus::CanTransport& transport)
-      : driver_(params), transport_(&transport) {}
+  TransportBus(const Params& params, bus::CanTransport& transport,
+               std::optional<driver::JointMemory> kept, JointMemoryFile* memory_file)
+      : driver_(params, std::move(kept)), transport_(&transport), memory_file_(memory_file) {}
   void wait_until(Pacer::Clock::time_point deadline) override {
     for (auto now = Pacer::Clock::now(); now < deadline; now = Pacer::Clock::now()) {
       const auto frames = transport_->receive(
@@ -120,13 +122,28 @@ class TransportBus final : public LiveBus {
   void step(double t_s, const driver::OperatorInput* input, bool /*settings_changed*/) override {
     for (const auto& f : driver_.step(t_s, received_, input)) transport_->send(f);
     received_.clear();
+    if (memory_file_ == nullptr) return;
+    try {
+      memory_file_->keep(driver_.joint_memory(), unix_time_s());
+    } catch (const std::runtime_error& e) {
+      // The rover drives on; a restart would then not find the newest state. Said once.
+      if (!memory_error_) std::fprintf(stderr, "marsokhod drive: %s\n", e.what());
+      memory_error_ = true;
+    }
   }
   const driver::DriverStatus& status() const override { return driver_.status(); }
   double time_s() const override { return driver_.status().mission_time_s; }
 
  private:
+  static double unix_time_s() {
+    return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+        .count();
+  }
+
   driver::Driver driver_;
   bus::CanTransport* transport_;
+  JointMemoryFile* memory_file_;
+  bool memory_error_ = false;
   std::vector<protocol::CanFrame> received_;
 };
 
@@ -192,7 +209,17 @@ int run_drive(const DriveArgs& args, const config::LoadedConfig& config, std::os
   const Params& params = config.params;
   std::unique_ptr<bus::CanTransport> transport;
   std::unique_ptr<LiveConsole> console;
+  std::unique_ptr<JointMemoryFile> memory_file;
+  std::optional<driver::JointMemory> kept;
+  std::string kept_note = "none kept (no --joint-memory): Procedure 4.3 takes the joints vertical";
   try {
+    if (!args.joint_memory.empty()) {
+      memory_file = std::make_unique<JointMemoryFile>(args.joint_memory,
+                                                      params.safety.joint_memory_max_age_s);
+      kept = memory_file->load(std::chrono::duration<double>(
+                                   std::chrono::system_clock::now().time_since_epoch()).count(),
+                               kept_note);
+    }
     transport = bus::open_transport(args.can);
     console = std::make_unique<LiveConsole>(config, args.console, out);
   } catch (const std::exception& e) {
@@ -200,8 +227,8 @@ int run_drive(const DriveArgs& args, const config::LoadedConfig& config, std::os
     return kUsageError;
   }
   out << "driving over " << transport->name() << "; " << config::describe_calibration(config.calibration)
-      << "\n" << std::flush;
-  TransportBus bus(params, *transport);
+      << "\njoint state: " << kept_note << "\n" << std::flush;
+  TransportBus bus(params, *transport, kept, memory_file.get());
   const auto period = std::chrono::microseconds(std::llround(params.cycle.period_s * 1e6));
   if (const int status = run_cycles(bus, *console, period, {"drive", args.duration_s, args.quiet},
                                     out, err);

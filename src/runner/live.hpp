@@ -41,6 +41,9 @@ struct DriveArgs {
   ConsoleArgs console;
   double duration_s = 0.0;
   bool quiet = false;
+  // The joint state kept across restarts (joint_memory_file.hpp); empty: none kept, a restart
+  // runs Procedure 4.3 and takes the joints to be vertical.
+  std::string joint_memory;
 };
 
 // The exit status: 0 when stopped (signal or duration), 1 when the bus failed, 2 when the

@@ -32,7 +32,7 @@ const std::vector<std::string>& phase_metric_names() {
       "duration_s", "distance_m", "forward_distance_m", "path_length_m", "mean_speed_mps",
       "yaw_change_rad", "yaw_rate_mean_radps", "climb_m", "energy_used_j", "mean_abs_slip_mps",
       "max_voltage_drop_v", "final_front_joint_rad", "final_rear_joint_rad",
-      "final_joint_error_rad", "max_joint_error_rad"};
+      "final_joint_error_rad", "max_joint_error_rad", "max_joint_bound_excess_rad"};
   return names;
 }
 
@@ -84,7 +84,8 @@ Metrics::Snapshot Metrics::snapshot(const Session& session, double time_s) const
 }
 
 void Metrics::observe_phases(const Session& session, double time_s,
-                             std::optional<double> voltage_drop_v, double joint_error_rad) {
+                             std::optional<double> voltage_drop_v, double joint_error_rad,
+                             double bound_excess_rad) {
   for (PhaseWindow& w : phases_) {
     if (!w.start && time_s >= w.phase.from_s - kTimeEpsilonS) w.start = snapshot(session, time_s);
     if (!w.start || w.end) continue;
@@ -93,6 +94,7 @@ void Metrics::observe_phases(const Session& session, double time_s,
       continue;
     }
     w.max_joint_error_rad = std::max(w.max_joint_error_rad, joint_error_rad);
+    w.max_bound_excess_rad = std::max(w.max_bound_excess_rad, bound_excess_rad);
     if (voltage_drop_v) w.max_voltage_drop_v = std::max(w.max_voltage_drop_v, *voltage_drop_v);
   }
 }
@@ -114,9 +116,10 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   last_yaw_rad_ = t.roll_pitch_yaw_rad[2];
   min_supply_v_ = std::min(min_supply_v_, session.rover().electrics().supply_v);
   const auto& j = params_->joints;
-  max_bound_excess_rad_ = std::max({max_bound_excess_rad_,
-                                    bound_excess(t.joint_angle_rad[kFrontJoint], j.front_min_rad, j.front_max_rad),
-                                    bound_excess(t.joint_angle_rad[kRearJoint], j.rear_min_rad, j.rear_max_rad)});
+  const double bound_excess_rad =
+      std::max(bound_excess(t.joint_angle_rad[kFrontJoint], j.front_min_rad, j.front_max_rad),
+               bound_excess(t.joint_angle_rad[kRearJoint], j.rear_min_rad, j.rear_max_rad));
+  max_bound_excess_rad_ = std::max(max_bound_excess_rad_, bound_excess_rad);
   for (double slip : t.wheel_slip_mps) {
     slip_sum_ += std::abs(slip);
     max_slip_mps_ = std::max(max_slip_mps_, std::abs(slip));
@@ -135,7 +138,7 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   if (cycle.driver_running && s.mode == driver::DriverMode::kDriving && s.reference_supply_v > 0.0) {
     voltage_drop_v = s.reference_supply_v - s.supply_v;
   }
-  observe_phases(session, now, voltage_drop_v, joint_error_rad(t));
+  observe_phases(session, now, voltage_drop_v, joint_error_rad(t), bound_excess_rad);
   if (!cycle.driver_running) return;
   if (voltage_drop_v) {
     max_voltage_drop_v_ = std::max(max_voltage_drop_v_, *voltage_drop_v);
@@ -174,6 +177,7 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
   m[p + "final_rear_joint_rad"] = end.joint_rad[1];
   m[p + "final_joint_error_rad"] = end.joint_error_rad;
   m[p + "max_joint_error_rad"] = w.max_joint_error_rad;
+  m[p + "max_joint_bound_excess_rad"] = w.max_bound_excess_rad;
 }
 
 std::map<std::string, double> Metrics::finish(const Session& session) const {

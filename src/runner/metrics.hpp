@@ -20,8 +20,9 @@
 // energy_used_j, mean_abs_slip_mps, max_voltage_drop_v, final_front_joint_rad,
 // final_rear_joint_rad and final_joint_error_rad (at the phase's end, to the targets in force
 // then), max_joint_error_rad (the largest joint error to the targets in force during the phase,
-// 0 without targets: Procedure 4.17's "within 0.05 rad during 1 s" over a 1-s phase). A phase starts at the first cycle at or after from_s and ends at the first at or after
-// to_s (or with the run).
+// 0 without targets: Procedure 4.17's "within 0.05 rad during 1 s" over a 1-s phase),
+// max_joint_bound_excess_rad (beyond (5.3), ground truth, during the phase). A phase starts at
+// the first cycle at or after from_s and ends at the first at or after to_s (or with the run).
 #pragma once
 
 #include <map>
@@ -70,12 +71,13 @@ class Metrics {
     std::optional<Snapshot> start, end;
     double max_voltage_drop_v = 0.0;
     double max_joint_error_rad = 0.0;
+    double max_bound_excess_rad = 0.0;
   };
 
   Snapshot snapshot(const Session& session, double time_s) const;
   double joint_error_rad(const sim::GroundTruth& truth) const;
   void observe_phases(const Session& session, double time_s, std::optional<double> voltage_drop_v,
-                      double joint_error_rad);
+                      double joint_error_rad, double bound_excess_rad);
   static void add_phase_metrics(const PhaseWindow& window, const Snapshot& end,
                                 std::map<std::string, double>& metrics);
 

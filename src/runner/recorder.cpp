@@ -5,6 +5,7 @@
 
 #include "bus/candump_log.hpp"
 #include "link/command_json.hpp"
+#include "runner/joint_memory_file.hpp"
 #include "runner/telemetry.hpp"
 
 namespace marsokhod::runner {
@@ -78,6 +79,7 @@ void Recorder::record(const CycleRecord& cycle,
                          {"running", cycle.driver_running},
                          {"input", cycle.input ? link::operator_input_json(*cycle.input) : nlohmann::json()}};
   if (runtime) line["runtime"] = link::runtime_settings_json(*runtime);
+  if (cycle.kept_joints) line["kept_joints"] = joint_memory_json(*cycle.kept_joints);
   operator_ << line.dump() << '\n';
   telemetry_ << telemetry_row(static_cast<double>(cycle.time_us) * 1e-6, cycle.driver_running,
                               status, rover)

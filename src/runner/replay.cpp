@@ -10,6 +10,7 @@
 #include "bus/candump_log.hpp"
 #include "driver/driver.hpp"
 #include "link/command_json.hpp"
+#include "runner/joint_memory_file.hpp"
 #include "runner/recorder.hpp"
 
 namespace marsokhod::runner {
@@ -78,7 +79,11 @@ ReplayResult replay(const std::filesystem::path& folder, const Params& params,
       ++result.cycles;
       continue;
     }
-    if (!driver) driver = std::make_unique<driver::Driver>(params);
+    if (!driver) {
+      std::optional<driver::JointMemory> kept;
+      if (line.contains("kept_joints")) kept = joint_memory_from_json(line["kept_joints"], where);
+      driver = std::make_unique<driver::Driver>(params, kept);
+    }
     driver->set_runtime(runtime);
     std::optional<driver::OperatorInput> input;
     if (!line.at("input").is_null()) input = link::operator_input_from_json(line["input"]);

@@ -35,7 +35,13 @@ const CycleRecord& Session::step(const driver::OperatorInput* input) {
   if (!rover_.computer_on()) {
     driver_.reset();  // the onboard computer is down, and the driver with it
   } else if (!driver_) {
-    driver_ = std::make_unique<driver::Driver>(*params_);  // rebooted: a fresh start-up
+    // Rebooted: a fresh start-up, continuing from the kept joint state if it is recent.
+    std::optional<driver::JointMemory> kept;
+    if (kept_joints_ && t - kept_time_s_ <= params_->safety.joint_memory_max_age_s) {
+      kept = kept_joints_;
+      record_.kept_joints = kept_joints_;
+    }
+    driver_ = std::make_unique<driver::Driver>(*params_, kept);
     driver_->set_runtime(runtime_);
     ++restarts_;
   }
@@ -48,6 +54,8 @@ const CycleRecord& Session::step(const driver::OperatorInput* input) {
     record_.sent = driver_->step(t, frames, input);
     for (const protocol::CanFrame& f : record_.sent) rover_.send(f, t);
     last_status_ = driver_->status();
+    kept_joints_ = driver_->joint_memory();
+    kept_time_s_ = t;
   }
   time_us_ += cycle_us_;
   ++cycles_;

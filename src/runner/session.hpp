@@ -7,7 +7,9 @@
 //   2. the driver steps with them and the operator's input of this cycle;
 //   3. its requests go onto the bus at t_k.
 // While the simulated onboard computer is browned out the driver is down (it runs on that
-// computer); when it comes back a fresh driver starts up, as after a reboot.
+// computer); when it comes back a fresh driver starts up, as after a reboot, with the joint state
+// the last one kept (driver/joint_memory.hpp) if it is at most safety.joint_memory_max_age_s old
+// — the simulated onboard computer's stand-in for the file `drive --joint-memory` writes.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +31,8 @@ struct CycleRecord {
   std::vector<protocol::CanFrame> sent;           // the driver's requests at t_k
   const driver::OperatorInput* input = nullptr;   // the operator's input of this cycle, if any
   bool driver_running = true;
+  // A driver started this cycle after a restart, with this kept joint state (none: none).
+  std::optional<driver::JointMemory> kept_joints;
 };
 
 class Session {
@@ -62,6 +66,8 @@ class Session {
   void halt_driver() { halted_ = true; }
   bool driver_halted() const { return halted_; }
   std::uint64_t driver_restarts() const { return restarts_; }
+  // The joint state kept for a restart, and the time it was kept [s].
+  const std::optional<driver::JointMemory>& kept_joints() const { return kept_joints_; }
 
  private:
   const Params* params_;
@@ -75,6 +81,8 @@ class Session {
   std::uint64_t restarts_ = 0;
   bool halted_ = false;
   CycleRecord record_;
+  std::optional<driver::JointMemory> kept_joints_;
+  double kept_time_s_ = 0.0;
 };
 
 }  // namespace marsokhod::runner

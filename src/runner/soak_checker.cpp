@@ -135,16 +135,11 @@ std::vector<Violation> InvariantChecker::check(const CycleView& c) {
   }
   const bool restarted = !previous_running_;
   if (restarted) {
-    if (ever_ran_) {
-      check_restart(c, out);
-      const auto& p0 = params_->motors.initial_position_rad;
-      lost_at_restart_ = {
-          std::abs(c.joint_angle_rad[0] - p0[kFrontJoint]) > limits_.joint_tolerance_rad,
-          std::abs(c.joint_angle_rad[1] - p0[kRearJoint]) > limits_.joint_tolerance_rad};
-    }
+    if (ever_ran_) check_restart(c, out);
     missing_ = {};
     missed_total_ = 0;
-    encoder_faulted_ = {};
+    // encoder_faulted_ stays: a restarted driver continues from the kept joint state, and
+    // with it from the pulses its predecessor lost.
     low_supply_cycles_ = 0;
   }
   const auto duties = sent_duties(c);
@@ -214,30 +209,47 @@ void InvariantChecker::check_joints(const CycleView& c, Report& out) {
   const std::array<std::pair<double, double>, 2> bounds{
       {{j.front_min_rad, j.front_max_rad}, {j.rear_min_rad, j.rear_max_rad}}};
   const std::array<std::size_t, 2> motors{kFrontJoint, kRearJoint};
+  const bool restarted = !previous_running_ && ever_ran_;
+  const bool starting = c.status->mode == driver::DriverMode::kStartup;
   for (std::size_t k = 0; k < 2; ++k) {
     encoder_faulted_[k] = encoder_faulted_[k] || c.joint_encoder_fault[k];
-    // A joint whose encoder lost pulses, or lost by a restart: only the driver's own estimate
-    // can be held to (5.3).
-    const bool unknown = encoder_faulted_[k] || lost_at_restart_[k];
+    // A joint whose encoder lost pulses: only the driver's own estimate can be held to (5.3).
+    const bool unknown = encoder_faulted_[k];
     const double truth = c.joint_angle_rad[k];
-    if (unknown) {
-      max_unknown_joint_excess_rad_ = std::max(
-          max_unknown_joint_excess_rad_, std::max(bounds[k].first - truth, truth - bounds[k].second));
-    }
+    const double truth_excess = std::max(bounds[k].first - truth, truth - bounds[k].second);
+    if (unknown) max_unknown_joint_excess_rad_ = std::max(max_unknown_joint_excess_rad_, truth_excess);
     // Until Procedure 4.3 has set p⁰ the driver has no estimate to hold (its p is the raw shaft).
-    if (unknown && c.status->mode == driver::DriverMode::kStartup) continue;
+    if (unknown && starting) continue;
     const double p = unknown ? c.status->motors[motors[k]].position_rad : truth;
     const double excess = std::max(bounds[k].first - p, p - bounds[k].second);
+    if (restarted) {
+      inherited_excess_rad_[k] = std::max(0.0, excess);
+      recovery_deadline_us_[k].reset();
+      max_restart_joint_excess_rad_ = std::max(max_restart_joint_excess_rad_, excess);
+    }
+    // A joint the brown-out left outside: held to that excess until it is back, or the time
+    // after start-up is up.
+    double allowed = limits_.joint_tolerance_rad;
+    if (inherited_excess_rad_[k] > 0.0) {
+      if (!starting && !recovery_deadline_us_[k]) {
+        recovery_deadline_us_[k] = c.time_us + std::llround(limits_.recovery_s * 1e6);
+      }
+      const bool expired = recovery_deadline_us_[k] && c.time_us > *recovery_deadline_us_[k];
+      if (excess <= limits_.joint_tolerance_rad || expired) {
+        inherited_excess_rad_[k] = 0.0;
+      } else {
+        allowed = std::max(allowed, inherited_excess_rad_[k] + limits_.joint_tolerance_rad);
+      }
+    }
     max_joint_excess_rad_ = std::max(max_joint_excess_rad_, excess);
-    if (excess > limits_.joint_tolerance_rad) {
+    if (excess > allowed) {
       add(out, Invariant::kJointBounds, c,
           std::string(k == 0 ? "front" : "rear") +
               format(" joint %.4f rad is %.4f rad outside (5.3) [%.4f, ", p, excess,
                      bounds[k].first) +
               format("%.4f]", bounds[k].second) +
-              (encoder_faulted_[k]    ? " (the driver's estimate: its encoder lost pulses)"
-               : lost_at_restart_[k] ? " (the driver's estimate: the joint was lost by a restart)"
-                                     : ""));
+              (encoder_faulted_[k] ? " (the driver's estimate: its encoder lost pulses)" : "") +
+              (allowed > limits_.joint_tolerance_rad ? " (more than a restart found)" : ""));
     }
   }
 }

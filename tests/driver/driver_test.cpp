@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
+#include "core/adaptation/backlash.hpp"
 #include "core/mobility/elementary_motion.hpp"
 #include "driver/duty_rules.hpp"
 #include "scripted_rover.hpp"
@@ -361,6 +363,155 @@ TEST_F(SpinDriverTest, JointPositionTargetsAreReachedLikeProcedure417) {
   bad.targets->front_joint_target_rad = -3.0;  // beyond (5.3)
   cycle(&bad);
   EXPECT_NE(driver.status().operator_rejection.find("front_joint_target"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace marsokhod::driver
+
+namespace marsokhod::driver {
+namespace {
+
+// A restart (joint_memory.hpp): a second driver on the same controllers, whose registers kept
+// counting, given what the first one kept.
+class RestartDriverTest : public SpinDriverTest {
+ protected:
+  static OperatorInput rolking() {
+    OperatorInput walk;
+    walk.targets = mobility::OperatorTargets{};
+    walk.targets->gait = mobility::Gait::kRolking;
+    walk.targets->gait_speed = 1.0;
+    return walk;
+  }
+  // Walks until the joints are well away from Remark 3.1, then returns what the driver kept.
+  JointMemory walk_and_keep() {
+    start_up();
+    const OperatorInput walk = rolking();
+    cycles(399, &walk);
+    shaft_at_reading = rover.shaft_rad;  // the responses the driver reads in its last cycle
+    cycles(1, &walk);
+    const auto& p0 = params.motors.initial_position_rad;
+    EXPECT_GT(std::abs(driver.status().motors[kFrontJoint].position_rad - p0[kFrontJoint]) +
+                  std::abs(driver.status().motors[kRearJoint].position_rad - p0[kRearJoint]),
+              0.5);
+    const auto kept = driver.joint_memory();
+    EXPECT_TRUE(kept.has_value());
+    return kept.value_or(JointMemory{});
+  }
+  // One cycle of the restarted driver; returns the largest |d| it sent a joint.
+  double restarted_cycle(Driver& restarted, const OperatorInput* input = nullptr) {
+    const auto requests = restarted.step(t, inbox, input);
+    inbox = rover.respond(requests, kH);
+    t += kH;
+    return std::max(std::abs(restarted.status().motors[kFrontJoint].duty),
+                    std::abs(restarted.status().motors[kRearJoint].duty));
+  }
+  std::array<double, 8> shaft_at_reading{};
+};
+
+TEST_F(RestartDriverTest, ContinuesFromTheKeptJointsWithoutProcedure43) {
+  const JointMemory kept = walk_and_keep();
+  const DriverStatus before = driver.status();
+  inbox.clear();  // the computer was down: the restarted driver starts on an empty bus
+  Driver restarted(params, kept);
+  double joint_duty = 0.0;
+  for (int k = 0; k < 100 && restarted.status().mode != DriverMode::kDriving; ++k) {
+    joint_duty = std::max(joint_duty, restarted_cycle(restarted));
+  }
+  const DriverStatus& s = restarted.status();
+  ASSERT_EQ(s.mode, DriverMode::kDriving);
+  EXPECT_EQ(joint_duty, 0.0);  // Procedure 4.3 did not run: it would have driven them at −0.08
+  EXPECT_TRUE(s.joints_known);
+  // The shafts turned on for the first driver's last cycle, which it did not see any more (the
+  // scripted motors stop with the next request): the counts carry that, and (4.1) along it.
+  EXPECT_EQ(s.joint_origin.rfind("kept across a restart (µ6 moved -0.00", 0), 0U) << s.joint_origin;
+  constexpr double kOneCount = 2.0 * std::numbers::pi / 115000.0;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::size_t j = k == 0 ? kFrontJoint : kRearJoint;
+    const double moved = rover.shaft_rad[j] - shaft_at_reading[j];
+    EXPECT_LT(moved, -0.004) << j;  // the gait was bending both joints toward their negative end
+    EXPECT_NEAR(s.motors[j].shaft_position_rad, kept.joints[k].shaft_rad + moved, kOneCount) << j;
+    EXPECT_DOUBLE_EQ(s.motors[j].position_rad,
+                     adaptation::backlash_position(s.motors[j].shaft_position_rad,
+                                                   kept.joints[k].joint_rad,
+                                                   params.motors.backlash_rad[j]))
+        << j;
+  }
+  EXPECT_NE(before.motors[kFrontJoint].shaft_position_rad, 0.0);
+  EXPECT_NE(restarted.joint_memory(), kept);  // its own now, the shafts' new readings in it
+  // The gait goes on from there inside (5.3).
+  const OperatorInput walk = rolking();
+  for (int k = 0; k < 1500; ++k) {
+    restarted_cycle(restarted, &walk);
+    const auto& m = restarted.status().motors;
+    ASSERT_GE(m[kFrontJoint].position_rad, params.joints.front_min_rad - 1e-3) << k;
+    ASSERT_LE(m[kFrontJoint].position_rad, params.joints.front_max_rad + 1e-3) << k;
+    ASSERT_GE(m[kRearJoint].position_rad, params.joints.rear_min_rad - 1e-3) << k;
+    ASSERT_LE(m[kRearJoint].position_rad, params.joints.rear_max_rad + 1e-3) << k;
+  }
+}
+
+TEST_F(RestartDriverTest, ARefusedStateHoldsTheJointsUntilCalibrationMode) {
+  JointMemory kept = walk_and_keep();
+  kept.joints[0].reading.stp = static_cast<std::uint16_t>(kept.joints[0].reading.stp + 777);
+  inbox.clear();
+  Driver restarted(params, kept);
+  for (int k = 0; k < 100 && restarted.status().mode != DriverMode::kDriving; ++k) {
+    restarted_cycle(restarted);
+  }
+  ASSERT_EQ(restarted.status().mode, DriverMode::kDriving);
+  EXPECT_FALSE(restarted.status().joints_known);
+  EXPECT_EQ(restarted.status().joint_origin.rfind("unknown: µ6 reversed at stp ", 0), 0U)
+      << restarted.status().joint_origin;
+  ASSERT_FALSE(restarted.status().warnings.empty());
+  EXPECT_EQ(restarted.status().warnings.front().rfind("joints held: ", 0), 0U);
+  // Kept as unknown, so that a second restart does not take them for known either.
+  ASSERT_TRUE(restarted.joint_memory().has_value());
+  EXPECT_FALSE(restarted.joint_memory()->known);
+  // Neither the gait nor a joint command moves them; the wheels drive.
+  const OperatorInput walk = rolking();
+  double joint_duty = 0.0;
+  for (int k = 0; k < 200; ++k) joint_duty = std::max(joint_duty, restarted_cycle(restarted, &walk));
+  EXPECT_EQ(joint_duty, 0.0);
+  EXPECT_EQ(restarted.status().gait, mobility::Gait::kNone);
+  OperatorInput bend = targets(1.0);
+  bend.targets->v6_radps = 0.5;
+  for (int k = 0; k < 100; ++k) joint_duty = std::max(joint_duty, restarted_cycle(restarted, &bend));
+  EXPECT_EQ(joint_duty, 0.0);
+  EXPECT_GT(restarted.status().motors[0].duty, 0.1);
+  // The operator sets them vertical in calibration mode and leaves it: known again.
+  OperatorInput calibrate;
+  calibrate.targets = mobility::OperatorTargets{};
+  calibrate.targets->calibration_mode = true;
+  for (int k = 0; k < 100; ++k) restarted_cycle(restarted, &calibrate);
+  const OperatorInput neutral = targets(0.0);
+  for (int k = 0; k < 10; ++k) restarted_cycle(restarted, &neutral);
+  EXPECT_TRUE(restarted.status().joints_known);
+  EXPECT_EQ(restarted.status().joint_origin, "calibration mode (Procedure 4.3)");
+  EXPECT_TRUE(restarted.joint_memory()->known);
+}
+
+TEST_F(RestartDriverTest, AStateKeptAsUnknownStaysUnknown) {
+  JointMemory kept = walk_and_keep();
+  kept.known = false;
+  inbox.clear();
+  Driver restarted(params, kept);
+  for (int k = 0; k < 100 && restarted.status().mode != DriverMode::kDriving; ++k) {
+    restarted_cycle(restarted);
+  }
+  EXPECT_FALSE(restarted.status().joints_known);
+  EXPECT_EQ(restarted.status().joint_origin,
+            "unknown: the driver before the restart did not know them either");
+}
+
+TEST_F(DriverTest, NothingIsKeptBeforeProcedure43HasEnded) {
+  EXPECT_FALSE(driver.joint_memory().has_value());
+  cycles(3);
+  EXPECT_FALSE(driver.joint_memory().has_value());
+  start_up();
+  ASSERT_TRUE(driver.joint_memory().has_value());
+  EXPECT_EQ(driver.status().joint_origin, "Procedure 4.3");
+  EXPECT_DOUBLE_EQ(driver.joint_memory()->joints[0].joint_rad,
+                   params.motors.initial_position_rad[kFrontJoint]);
 }
 
 }  // namespace

@@ -40,6 +40,8 @@ driver::DriverStatus sample_status() {
   s.front_axle_factor = 1.0;
   s.rear_axle_factor = 0.5;
   s.joint_bounds = {-2.55, -1.2121, 1.2121, 2.0};
+  s.joints_known = false;
+  s.joint_origin = "unknown: µ6 reset";
   s.operator_timeout = false;
   s.operator_rejection = "v1 = 9 is out of range";
   s.faults = {"µ3 silent"};
@@ -76,6 +78,8 @@ TEST(StatusJson, CarriesEveryFieldUnderItsKey) {
   EXPECT_EQ(j["front_axle_factor"], 1.0);
   EXPECT_EQ(j["rear_axle_factor"], 0.5);
   EXPECT_EQ(j["joint_bounds"]["rear_max_rad"], 2.0);
+  EXPECT_EQ(j["joints_known"], false);
+  EXPECT_EQ(j["joint_origin"], "unknown: µ6 reset");
   EXPECT_EQ(j["operator_timeout"], false);
   EXPECT_EQ(j["operator_rejection"], "v1 = 9 is out of range");
   EXPECT_EQ(j["faults"], nlohmann::json({"µ3 silent"}));

@@ -77,6 +77,25 @@ TEST(Replay, ARecordingReplaysBitForBit) {
   EXPECT_GT(replayed.frames_compared, 9u * 200u);  // 8 motor requests and µ8's, each cycle
 }
 
+TEST(Replay, ARestartAfterABrownOutReplaysWithTheKeptJointState) {
+  // The recording says with which kept joint state the driver restarted (operator.jsonl's
+  // "kept_joints" on that cycle), so that replay restarts it the same way.
+  const ScratchFolder folder;
+  const Scenario scenario = load_scenario(kSourceDir / "scenarios" / "brownout-mid-gait.toml");
+  RunOptions options;
+  options.out = folder.path() / "run";
+  options.config_file = kConfigFile;
+  options.plots = false;
+  ASSERT_TRUE(run_scenario(scenario, shipped_params(), options).passed);
+  int restarts = 0;
+  for (const std::string& line : lines_of(folder.path() / "run" / "operator.jsonl")) {
+    if (line.find("\"kept_joints\"") != std::string::npos) ++restarts;
+  }
+  EXPECT_EQ(restarts, 1);
+  const ReplayResult replayed = replay(folder.path() / "run", shipped_params());
+  EXPECT_TRUE(replayed.identical) << replayed.first_difference;
+}
+
 TEST(Replay, AStopKeepsItsReasonInTheRecording) {
   // The driver shows who stopped (DriverStatus::stop_reason): operator.jsonl keeps it, so a
   // replayed run holds the same stop for the same reason.

@@ -226,6 +226,8 @@ export interface Status {
   front_axle_factor: StatusNumber;
   rear_axle_factor: StatusNumber;
   joint_bounds: JointBounds;
+  joints_known: boolean;
+  joint_origin: string;
   operator_timeout: boolean;
   operator_rejection: string;
   stop_latched: boolean;

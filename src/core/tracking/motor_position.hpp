@@ -32,6 +32,7 @@ struct EncoderReading {
   std::uint16_t enc = 0;  // pulses, modulo 65536
   std::uint16_t stp = 0;  // enc at the last measured direction change
   bool dir = false;       // measured direction: false = positive (counter-clockwise around x2)
+  bool operator==(const EncoderReading& other) const = default;
 };
 
 // Signed pulses from previous to current, positive in the positive direction (dir = 0).
@@ -62,6 +63,8 @@ class PositionTracker {
   std::int64_t accumulated_counts() const { return accumulated_counts_; }
   // How many direction changes arrived with an stp off the arc (counted as Δ = 0).
   std::uint64_t unknown_reversal_count() const { return unknown_reversal_count_; }
+  // The registers of the last reading (meaningful once started).
+  const EncoderReading& last_reading() const { return previous_; }
 
  private:
   double initial_position_rad_;
