@@ -13,13 +13,14 @@ import { element } from './dom.js';
 /** @type {MotorName[]} */
 export const MOTORS = ['FL', 'FR', 'CL', 'CR', 'BL', 'BR', 'AF', 'AR'];
 
-/** @typedef {'pos' | 'vel' | 'load' | 'duty' | 'cmd'} RowKey */
+/** @typedef {'pos' | 'vel' | 'load' | 'τ' | 'duty' | 'cmd'} RowKey */
 
 /** @type {[RowKey, string, (m: MotorStatus) => StatusNumber][]} */
 const ROWS = [
   ['pos', 'position p [rad]', (m) => m.position_rad],
   ['vel', 'velocity w [rad/s]', (m) => m.velocity_radps],
   ['load', 'load l = w − ν [rad/s]', (m) => m.load_radps],
+  ['τ', 'torque τ = l/B±(d) of (4.6) [N·m]', (m) => m.torque_nm],
   ['duty', 'duty cycle d', (m) => m.duty],
   ['cmd', 'commanded ŵ [rad/s]', (m) => m.commanded_radps],
 ];
