@@ -265,7 +265,7 @@ void RoverPhysics::Impl::apply_strapped_weights() {
   }
 }
 
-void RoverPhysics::Impl::apply_axle_hands() {
+void RoverPhysics::Impl::move_axle_hands() {
   const double step_rad = kAxleHandRateRadps * model->opt.timestep;
   for (std::size_t axle = 0; axle < 2; ++axle) {
     if (!axle_hand_target_rad[axle]) continue;
@@ -273,18 +273,28 @@ void RoverPhysics::Impl::apply_axle_hands() {
         std::clamp(*axle_hand_target_rad[axle], -kMaxAxleTiltRad, kMaxAxleTiltRad);
     const double move = std::clamp(target - axle_hand_rad[axle], -step_rad, step_rad);
     axle_hand_rad[axle] += move;
-    // Kinematic: the hand is rigid, so the hinge is where the hand is, moving at its speed.
+    axle_hand_speed_radps[axle] = move / model->opt.timestep;
+  }
+}
+
+void RoverPhysics::Impl::pin_axles_to_hands() {
+  // Kinematic: the hand is rigid, so the hinge is where the hand is, moving at its speed —
+  // before the step (what the dynamics see) and after it (what is read).
+  for (std::size_t axle = 0; axle < 2; ++axle) {
+    if (!axle_hand_target_rad[axle]) continue;
     data->qpos[ids.tilt_qpos[axle]] = axle_hand_rad[axle];
-    data->qvel[ids.tilt_dof[axle]] = move / model->opt.timestep;
+    data->qvel[ids.tilt_dof[axle]] = axle_hand_speed_radps[axle];
   }
 }
 
 void RoverPhysics::step() {
   impl_->update_joint_modes();
   impl_->apply_strapped_weights();
-  impl_->apply_axle_hands();
+  impl_->move_axle_hands();
+  impl_->pin_axles_to_hands();
   impl_->apply_skid_sinkage();
   mj_step(impl_->model.get(), impl_->data.get());
+  impl_->pin_axles_to_hands();
 }
 
 void RoverPhysics::place_on_stand(double roll_rad, double pitch_rad) {
@@ -351,6 +361,7 @@ void RoverPhysics::hold_axle_tilt(std::size_t axle, std::optional<double> tilt_r
   }
   if (tilt_rad && !impl_->axle_hand_target_rad[axle]) {
     impl_->axle_hand_rad[axle] = impl_->data->qpos[impl_->ids.tilt_qpos[axle]];  // takes hold here
+    impl_->axle_hand_speed_radps[axle] = 0.0;
   }
   impl_->axle_hand_target_rad[axle] = tilt_rad;
 }

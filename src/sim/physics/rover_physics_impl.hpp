@@ -59,8 +59,9 @@ struct RoverPhysics::Impl {
   // Procedure 3.4's hands on the exterior axles: the angle each is turned to (nullopt: none), and
   // where the hand is now.
   std::array<std::optional<double>, 2> axle_hand_target_rad{};
-  std::array<double, 2> axle_hand_rad{};
-  void apply_axle_hands();
+  std::array<double, 2> axle_hand_rad{}, axle_hand_speed_radps{};
+  void move_axle_hands();
+  void pin_axles_to_hands();
 };
 
 }  // namespace marsokhod::sim
