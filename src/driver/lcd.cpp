@@ -22,7 +22,7 @@ const char* lcd_code(const DriverStatus& status) {
 std::string lcd_characters(const DriverStatus& status) {
   char text[16];
   const double degrees = status.slope_rad * 180.0 / std::numbers::pi;
-  if (std::isfinite(degrees)) {
+  if (std::isfinite(degrees) && status.mode != DriverMode::kStartup) {
     // Rounded first, so that −0.04° shows as +0.0 and not −0.0.
     double tenths = std::round(std::clamp(degrees, -99.9, 99.9) * 10.0) / 10.0;
     if (tenths == 0.0) tenths = 0.0;

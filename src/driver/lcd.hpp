@@ -12,13 +12,14 @@
 //         operator's stop latched, "TO" no operator input for operator_timeout_s; the first that
 //         applies in this order; two blanks while the rover drives under operator control.
 //   σ:    printf "%+5.1f" of σ in degrees, rounded to 0.1° (−0.0 shows as +0.0), clamped to
-//         ±99.9; " --.-" when σ is not finite. 'd' stands for the degree sign, which is not in
-//         ASCII 32..127 (chapter 3.3's lcdⁱ range).
+//         ±99.9; " --.-" when σ is not finite, and during start-up, before the first estimate.
+//         'd' stands for the degree sign, which is not in ASCII 32..127 (chapter 3.3's lcdⁱ
+//         range).
 //
 // Examples: σ = −2.5° while driving "   -2.5d" (the −2,5° of Figure 8.1), σ = 12.46° on a
 // latched fault "FT+12.5d". With µ8's voltage the 16-character display reads "   -2.5d  24.10V".
-// σ is estimated in the driving mode's cycles (stopped or not); in the other modes the display
-// keeps the last estimate (0 before the first).
+// σ is estimated in the driving mode's cycles (stopped or not); in calibration mode and on a
+// fault the display keeps the last estimate; start-up comes before the first ("SU --.-d").
 #pragma once
 
 #include <string>

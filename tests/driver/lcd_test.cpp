@@ -49,8 +49,8 @@ TEST(Lcd, CodesInTheirOrder) {
   EXPECT_EQ(lcd_characters(s), "ST -2.5d");
   s.mode = DriverMode::kCalibration;
   EXPECT_EQ(lcd_characters(s), "CA -2.5d");
-  s.mode = DriverMode::kStartup;
-  EXPECT_EQ(lcd_characters(s), "SU -2.5d");
+  s.mode = DriverMode::kStartup;  // σ is not estimated before the first driving cycle
+  EXPECT_EQ(lcd_characters(s), "SU --.-d");
   s.mode = DriverMode::kFault;
   EXPECT_EQ(lcd_characters(s), "FT -2.5d");
 }
