@@ -73,6 +73,9 @@ struct BenchSetup {
   // Procedure 4.1: on the ground, strapped down so that neither the wheels rotate nor the joints
   // incline (the simulated bench blocks every wheel; the axles then cannot move over the ground).
   bool strapped_down = false;
+  // Procedure 3.4: the exterior axles (0 front, 1 rear) turned by hand to this roll θ relative to
+  // the center axle and held there; beyond ±30° the axle rests on its stop. nullopt: let go.
+  std::array<std::optional<double>, 2> axle_tilt_rad{};
   // What the operator of a real rover must do to get here ("Put the rover on its left side…").
   std::string instruction;
 };

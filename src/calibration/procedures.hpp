@@ -18,6 +18,7 @@ namespace marsokhod::calibration {
 
 // The procedures, each a fresh one for one run (registered by name in registry.cpp).
 std::unique_ptr<Procedure> accelerometer_procedure();  // the ±g table, axis by axis, on the stand
+std::unique_ptr<Procedure> tilt_procedure();           // θf, θr at the stops and level
 std::unique_ptr<Procedure> voltage_procedure();        // U = gain·vcc + offset, 27 … 20 V
 std::unique_ptr<Procedure> joints_procedure();         // joint initialisation and backlash
 std::unique_ptr<Procedure> motor_curve_procedure();    // W_icr(d) by a slow pwm sweep

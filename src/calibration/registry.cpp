@@ -9,6 +9,9 @@ const std::vector<ProcedureInfo>& procedures() {
   static const std::vector<ProcedureInfo> table{
       {"accelerometer", "Procedure 3.3", "the accelerometer's ±g table, axis by axis", true, false,
        accelerometer_procedure},
+      {"tilt", "Procedure 3.4",
+       "θf, θr = gain·tlt + offset at the ±30° stops and level, play taken out", true,
+       false, tilt_procedure},
       {"voltage", "Procedure 3.5", "U = gain·vcc + offset at supply voltages 27 … 20 V", true,
        false, voltage_procedure},
       {"joints", "Procedure 4.3, Procedure 4.1", "joint initialisation and the joints' backlash",

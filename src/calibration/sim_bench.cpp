@@ -64,6 +64,9 @@ void SimBench::arrange(const BenchSetup& setup) {
                             setup.placement == BenchSetup::Placement::kGround);
   rover_->set_faults(faults);
   if (setup.supply_v) rover_->set_tether_voltage(*setup.supply_v);
+  for (std::size_t axle = 0; axle < setup.axle_tilt_rad.size(); ++axle) {
+    rover_->hold_axle_tilt(axle, setup.axle_tilt_rad[axle]);
+  }
   for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
     const bool strapped = setup.weight_wheel && *setup.weight_wheel == wheel;
     rover_->strap_weight(wheel, strapped ? setup.weight_peak_torque_nm : 0.0);

@@ -55,9 +55,11 @@ std::string join_names(const std::set<std::string>& names) {
   return out;
 }
 
-// Whether two [[motor_curve]] / [[response]] entries describe the same table.
+// Whether two [[motor_curve]] / [[load_gain]] / [[response]] entries describe the same table.
 bool same_table(const std::string& kind, const toml::table& a, const toml::table& b) {
-  if (kind == "motor_curve") return a["icr"].value<int64_t>() == b["icr"].value<int64_t>();
+  if (kind == "motor_curve" || kind == "load_gain") {
+    return a["icr"].value<int64_t>() == b["icr"].value<int64_t>();
+  }
   const auto pa = a["period_s"].value<double>();
   const auto pb = b["period_s"].value<double>();
   return a["con"].value<int64_t>() == b["con"].value<int64_t>() && pa && pb &&

@@ -8,6 +8,9 @@
 //   [[motor_curve]]  icr, duty, no_load_speed_radps     replaces the table of its icr (4.4)
 //   [[response]]     period_s, con, delta   replaces the table of its (h ± 1 ms, con) (4.8)
 //   [load]     gain_same_sign_radps_per_nm, gain_opposite_sign_radps_per_nm  (Procedure 4.13)
+//   [[load_gain]]    icr, duty, same_sign_radps_per_nm, opposite_sign_radps_per_nm
+//                    replaces the B± table of its icr (4.6), Procedure 4.13
+//   [sensors]  tilt_front_rad_per_count, tilt_front_offset_rad, tilt_rear_…   (Procedure 3.4)
 //   [spin]     slope_per_m, offset                                           (Procedure 5.1)
 //   [power]    duty_drop_v, load_drop_v_s2_per_rad2                          ((4.5))
 // and [calibration.<procedure>] tables reporting where and how well each was measured. Any other

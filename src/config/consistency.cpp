@@ -38,6 +38,43 @@ void check_curve(const MotorCurveParams& c, std::size_t index, std::vector<std::
   }
 }
 
+// (4.6): a [[load_gain]] table's columns pair up and its duty cycles increase.
+void check_load_gain(const LoadGainParams& g, std::size_t index, std::vector<std::string>& out) {
+  const std::string name = "load_gain[" + std::to_string(index) + "]";
+  if (g.same_sign_radps_per_nm.size() != g.duty.size() ||
+      g.opposite_sign_radps_per_nm.size() != g.duty.size()) {
+    out.push_back(name + ": duty has " + std::to_string(g.duty.size()) +
+                  " entries, same_sign_radps_per_nm " +
+                  std::to_string(g.same_sign_radps_per_nm.size()) +
+                  " and opposite_sign_radps_per_nm " +
+                  std::to_string(g.opposite_sign_radps_per_nm.size()) + "; they must pair up");
+  }
+  for (std::size_t i = 1; i < g.duty.size(); ++i) {
+    if (!(g.duty[i] > g.duty[i - 1])) {
+      out.push_back(name + ".duty[" + std::to_string(i) + "]: " + show_number(g.duty[i]) +
+                    " does not increase; duty must be strictly increasing");
+    }
+  }
+}
+
+void check_load_gains(const Params& p, std::vector<std::string>& out) {
+  bool configured = false;
+  for (std::size_t i = 0; i < p.load_gains.size(); ++i) {
+    check_load_gain(p.load_gains[i], i, out);
+    configured = configured || p.load_gains[i].icr == p.cycle.icr;
+    for (std::size_t k = 0; k < i; ++k) {
+      if (p.load_gains[k].icr == p.load_gains[i].icr) {
+        out.push_back("load_gain[" + std::to_string(i) +
+                      "].icr: " + std::to_string(p.load_gains[i].icr) + " is given twice");
+      }
+    }
+  }
+  if (!configured) {
+    out.push_back("cycle.icr: " + std::to_string(p.cycle.icr) +
+                  " has no [[load_gain]] with that icr; add one (calibrate load)");
+  }
+}
+
 bool has_curve(const Params& p) {
   for (const auto& c : p.motor_curves) {
     if (c.icr == p.cycle.icr) return true;
@@ -87,6 +124,7 @@ std::vector<std::string> consistency_problems(const Params& p) {
       }
     }
   }
+  check_load_gains(p, out);
   if (!has_curve(p)) {
     out.push_back("cycle.icr: " + std::to_string(p.cycle.icr) +
                   " has no [[motor_curve]] with that icr; add one (calibrate motor-curve)");

@@ -109,6 +109,23 @@ constexpr ParamSpec kLoad[] = {
      .unit = "rad/(s N m)", .symbol = "B⁻", .about = "l ≈ τ·B⁻ when τd < 0", .calibrated = true},
 };
 
+constexpr ParamSpec kLoadGain[] = {
+    {.key = "icr", .field = field<&LoadGainParams::icr>, .min = 255, .max = 2047, .symbol = "icr",
+     .about = "the PWM period register this table holds for", .calibrated = true},
+    {.key = "duty", .field = field<&LoadGainParams::duty>, .min = 0.0, .max = 1.0, .min_count = 1,
+     .max_count = 64, .symbol = "|d|",
+     .about = "duty cycles, strictly increasing; B± is linear in between, constant beyond, even "
+              "in d",
+     .calibrated = true},
+    {.key = "same_sign_radps_per_nm", .field = field<&LoadGainParams::same_sign_radps_per_nm>,
+     .min = 1e-6, .max = 10.0, .min_count = 1, .max_count = 64, .unit = "rad/(s N m)",
+     .symbol = "B⁺(d)", .about = "l = τ·B⁺(d) when τd ≥ 0, one per duty", .calibrated = true},
+    {.key = "opposite_sign_radps_per_nm",
+     .field = field<&LoadGainParams::opposite_sign_radps_per_nm>, .min = 1e-6, .max = 10.0,
+     .min_count = 1, .max_count = 64, .unit = "rad/(s N m)", .symbol = "B⁻(d)",
+     .about = "l = τ·B⁻(d) when τd < 0, one per duty", .calibrated = true},
+};
+
 constexpr ParamSpec kJoints[] = {
     {.key = "front_min_rad", .field = field<&JointParams::front_min_rad>, .min = -kPi, .max = 0.0,
      .unit = "rad", .symbol = "p6_min", .about = "front joint fully extended"},
@@ -183,17 +200,20 @@ constexpr ParamSpec kSensors[] = {
      .about = "ADC reading of x1, x2, x3 with the axis along +g", .calibrated = true},
     {.key = "tilt_front_rad_per_count",
      .field = field<&SensorParams::tilt_front, &LinearConversion::gain>, .min = -1.0, .max = 1.0,
-     .unit = "rad", .symbol = "θf", .source = "Procedure 3.4", .about = "θf = 0.00495·tltᶠ − 2.61"},
+     .unit = "rad", .symbol = "θf", .source = "Procedure 3.4", .about = "θf = 0.00495·tltᶠ − 2.61",
+     .calibrated = true},
     {.key = "tilt_front_offset_rad",
      .field = field<&SensorParams::tilt_front, &LinearConversion::offset>, .min = -10.0,
-     .max = 10.0, .unit = "rad", .symbol = "θf", .source = "Procedure 3.4", .about = "its offset"},
+     .max = 10.0, .unit = "rad", .symbol = "θf", .source = "Procedure 3.4", .about = "its offset",
+     .calibrated = true},
     {.key = "tilt_rear_rad_per_count",
      .field = field<&SensorParams::tilt_rear, &LinearConversion::gain>, .min = -1.0, .max = 1.0,
      .unit = "rad", .symbol = "θr", .source = "Procedure 3.4",
-     .about = "θr = −0.00526·tltʳ + 2.74 (docs/design.md: +2.74)"},
+     .about = "θr = −0.00526·tltʳ + 2.74 (docs/design.md: +2.74)", .calibrated = true},
     {.key = "tilt_rear_offset_rad",
      .field = field<&SensorParams::tilt_rear, &LinearConversion::offset>, .min = -10.0, .max = 10.0,
-     .unit = "rad", .symbol = "θr", .source = "Procedure 3.4", .about = "its offset"},
+     .unit = "rad", .symbol = "θr", .source = "Procedure 3.4", .about = "its offset",
+     .calibrated = true},
     {.key = "supply_v_per_count", .field = field<&SensorParams::supply, &LinearConversion::gain>,
      .min = 1e-6, .max = 1.0, .unit = "V", .symbol = "U", .source = "Procedure 3.5",
      .about = "U = 0.06768·vcc − 41.0823", .calibrated = true},
@@ -320,6 +340,12 @@ constexpr SectionSpec kSchema[] = {
                                                   "Voltage drop and power management", kPower),
     table<&Configuration::params, &Params::load>("load", "(4.7)", "Load from torque, l ≈ τ·B",
                                                  kLoad),
+    repeated<&Configuration::params, &Params::load_gains>(
+        "load_gain", "(4.6), Procedure 4.13",
+        "B±_icr(d), load per torque over duty, one table per icr; the driver's torque estimate τ "
+        "uses the configured icr's. Figure 4.8 is lost: B rises below d = 0.3 by "
+        "0.5·512/(icr+1) of (4.7)'s constants (docs/decisions.md)",
+        kLoadGain),
     table<&Configuration::params, &Params::joints>("joints", "(5.3), (4.15), Procedure 4.17",
                                                    "The joints' bounds and control", kJoints),
     table<&Configuration::params, &Params::spin>("spin", "chapter 5.1",

@@ -88,6 +88,16 @@ struct LoadParams {
   double gain_opposite_sign_radps_per_nm = 0.015;  // B⁻
 };
 
+// (4.6) B⁺_icr(d), B⁻_icr(d) for one icr (Procedure 4.13, Figure 4.8): the load per torque at
+// duty cycles |d| (strictly increasing in [0, 1]), linear in between, constant beyond the ends,
+// even in d (docs/decisions.md).
+struct LoadGainParams {
+  int icr = 511;
+  std::vector<double> duty;
+  std::vector<double> same_sign_radps_per_nm;      // B⁺(d), τd ≥ 0
+  std::vector<double> opposite_sign_radps_per_nm;  // B⁻(d), τd < 0
+};
+
 // (5.3) joint bounds; the contracted bounds are ∓acos(a/b) from the geometry.
 struct JointParams {
   double front_min_rad = -2.55;  // p6_min
@@ -206,6 +216,14 @@ struct Params {
       {0.0313, 1, {0.0, 0.2449, 0.5592, 0.1960}}};
   PowerParams power;
   LoadParams load;
+  // One B± table per icr (4.6). Figure 4.8 is lost; its description ("a reduced modulation
+  // frequency increases the load resistance at small duty cycles") is read as B rising below
+  // d = 0.3 by 0.5·512/(icr+1) of (4.7)'s constants, which hold above (docs/decisions.md).
+  std::vector<LoadGainParams> load_gains{
+      {255, {0.0, 0.3, 1.0}, {0.060, 0.030, 0.030}, {0.030, 0.015, 0.015}},
+      {511, {0.0, 0.3, 1.0}, {0.045, 0.030, 0.030}, {0.0225, 0.015, 0.015}},
+      {1023, {0.0, 0.3, 1.0}, {0.0375, 0.030, 0.030}, {0.01875, 0.015, 0.015}},
+      {2047, {0.0, 0.3, 1.0}, {0.03375, 0.030, 0.030}, {0.016875, 0.015, 0.015}}};
   JointParams joints;
   SpinParams spin;
   LoadDistributionParams load_distribution;

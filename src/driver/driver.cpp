@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "core/protocol/codec.hpp"
 #include "driver/duty_rules.hpp"
+#include "driver/lcd.hpp"
 
 namespace marsokhod::driver {
 namespace {
@@ -289,18 +289,7 @@ bool Driver::on_slope() const {
   return tilt_rad > params_->behaviours.slant_deadband_rad;
 }
 
-std::string Driver::lcd_text() const {
-  const char* code = "DR";
-  if (status_.mode == DriverMode::kFault) code = "FT";
-  else if (status_.mode == DriverMode::kCalibration) code = "CA";
-  else if (status_.mode == DriverMode::kStartup) code = "SU";
-  else if (status_.operator_timeout) code = "TO";
-  char text[16];
-  std::snprintf(text, sizeof text, "%4.1fV %s", std::clamp(status_.supply_v, 0.0, 99.9), code);
-  std::string out(text);
-  out.resize(8, ' ');
-  return out;
-}
+std::string Driver::lcd_text() const { return lcd_characters(status_); }
 
 void Driver::encode_requests() {
   requests_.clear();

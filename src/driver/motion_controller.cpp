@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/adaptation/backlash.hpp"
+#include "core/adaptation/load_torque.hpp"
 #include "core/adaptation/no_load_velocity.hpp"
 #include "core/adaptation/voltage_drop.hpp"
 #include "core/behaviour/contract_on_turn.hpp"
@@ -88,6 +89,7 @@ struct MotionController::JointCommands {
 MotionController::MotionController(const Params& params)
     : params_(&params),
       curve_(adaptation::select_motor_curve(params.motor_curves, params.cycle.icr)),
+      load_gains_(&adaptation::select_load_gains(params.load_gains, params.cycle.icr)),
       backlash_(params.motors),
       estimator_(driver_estimator(params)),
       joints_(joint_bounds_with_backlash_margin(params.joints, params.motors)),
@@ -120,6 +122,8 @@ void MotionController::track(const MotionInput& input, DriverStatus& status) {
     m.velocity_radps = w[i];
     m.no_load_velocity_radps = nu[i];
     m.load_radps = load_[i];
+    // (4.6) at the duty the motor ran at while w was measured (sent the cycle before).
+    m.torque_nm = adaptation::torque_estimate_nm(load_[i], last_duty_[i], *load_gains_);
   }
 }
 

@@ -90,6 +90,7 @@ class MotionController {
 
   const Params* params_;
   adaptation::MotorCurve curve_;
+  const LoadGainParams* load_gains_;  // B± of (4.6) at the configured icr
   adaptation::RoverBacklashTracker backlash_;
   adaptation::NoLoadEstimator estimator_;
   JointParams joints_;  // (5.3) with the full backlash margin, for the gaits' strokes

@@ -28,6 +28,7 @@ struct MotorStatus {
   double velocity_radps = 0.0;      // w (4.2)
   double no_load_velocity_radps = 0.0;  // ν (4.4)
   double load_radps = 0.0;          // l = w − ν (Definition 4.9)
+  double torque_nm = 0.0;           // τ = l/B±_icr(d) of (4.6), the external torque's estimate
   double commanded_radps = 0.0;     // ŵ of (5.4) after κ and h
   double duty = 0.0;                // d sent this cycle
   int silent_cycles = 0;            // consecutive cycles without a response

@@ -15,6 +15,7 @@ Json motor_json(const driver::MotorStatus& motor) {
           {"velocity_radps", motor.velocity_radps},
           {"no_load_velocity_radps", motor.no_load_velocity_radps},
           {"load_radps", motor.load_radps},
+          {"torque_nm", motor.torque_nm},
           {"commanded_radps", motor.commanded_radps},
           {"duty", motor.duty},
           {"silent_cycles", motor.silent_cycles}};

@@ -94,6 +94,30 @@ TEST_F(CalibrationFile, NeverOverwritesWithoutForceAndKeepsOtherProcedures) {
   EXPECT_EQ(loaded.calibration.procedures.size(), 2U);
 }
 
+TEST_F(CalibrationFile, ALoadGainTableReplacesTheOneOfItsIcr) {
+  // (4.6): a [[load_gain]] in the calibration file replaces the configured table of its icr.
+  ProcedureResult r;
+  r.procedure = "load";
+  r.reference = "Procedure 4.13";
+  toml::table gains;
+  gains.insert_or_assign("icr", 511);
+  gains.insert_or_assign("duty", toml::array{0.0, 0.6});
+  gains.insert_or_assign("same_sign_radps_per_nm", toml::array{0.05, 0.031});
+  gains.insert_or_assign("opposite_sign_radps_per_nm", toml::array{0.02, 0.014});
+  toml::array tables;
+  tables.push_back(std::move(gains));
+  r.values.insert_or_assign("load_gain", std::move(tables));
+  const fs::path file = dir_ / "calibration.toml";
+  write_calibration(file, r, kConfig, "sim", false);
+  const Params params = config::load_configuration(kConfig, file).params;
+  ASSERT_EQ(params.load_gains.size(), 4U);  // 255, 511, 1023, 2047
+  for (const LoadGainParams& g : params.load_gains) {
+    if (g.icr != 511) continue;
+    EXPECT_EQ(g.duty, (std::vector<double>{0.0, 0.6}));
+    EXPECT_EQ(g.same_sign_radps_per_nm, (std::vector<double>{0.05, 0.031}));
+  }
+}
+
 TEST_F(CalibrationFile, RefusesPoorFitsAndValuesTheConfigurationRejects) {
   const fs::path file = dir_ / "calibration.toml";
   ProcedureResult poor = voltage_result(0.0683, -41.5);

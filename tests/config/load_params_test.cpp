@@ -82,6 +82,14 @@ TEST(LoadParams, ShippedFileMatchesTheThesisDefaults) {
   EXPECT_EQ(p.power.max_drop_v, 1.5);
   EXPECT_EQ(p.load.gain_same_sign_radps_per_nm, 0.030);
   EXPECT_EQ(p.load.gain_opposite_sign_radps_per_nm, 0.015);
+  ASSERT_EQ(p.load_gains.size(), d.load_gains.size());
+  for (std::size_t i = 0; i < p.load_gains.size(); ++i) {
+    EXPECT_EQ(p.load_gains[i].icr, d.load_gains[i].icr);
+    EXPECT_EQ(p.load_gains[i].duty, d.load_gains[i].duty);
+    EXPECT_EQ(p.load_gains[i].same_sign_radps_per_nm, d.load_gains[i].same_sign_radps_per_nm);
+    EXPECT_EQ(p.load_gains[i].opposite_sign_radps_per_nm,
+              d.load_gains[i].opposite_sign_radps_per_nm);
+  }
   EXPECT_EQ(p.joints.front_min_rad, -2.55);
   EXPECT_EQ(p.joints.rear_max_rad, 2.55);
   EXPECT_EQ(p.spin.slope_per_m, 5.3);
@@ -163,6 +171,24 @@ TEST(LoadParams, OutOfRangeValueIsNamedWithTheRange) {
   EXPECT_NE(e.find("motor_curve[0].icr: 4000 is out of range; allowed [255, 2047]"),
             std::string::npos)
       << e;
+}
+
+TEST(LoadParams, LoadGainTablesMustPairUpIncreaseAndCoverTheConfiguredIcr) {
+  // (4.6)'s B± tables: the first shipped one is icr 255's.
+  EXPECT_NE(problem_of(with_value("[[load_gain]]", "icr", "511"))
+                .find("load_gain[1].icr: 511 is given twice"),
+            std::string::npos);
+  EXPECT_NE(problem_of(with_value("[[load_gain]]", "duty", "[0.0, 0.3]"))
+                .find("load_gain[0]: duty has 2 entries, same_sign_radps_per_nm 3 and "
+                      "opposite_sign_radps_per_nm 3; they must pair up"),
+            std::string::npos);
+  EXPECT_NE(problem_of(with_value("[[load_gain]]", "duty", "[0.0, 0.3, 0.3]"))
+                .find("load_gain[0].duty[2]: 0.3 does not increase"),
+            std::string::npos);
+  EXPECT_NE(problem_of(with_line("icr = 511\nduty = [0.0, 0.3, 1.0]",
+                                 "icr = 600\nduty = [0.0, 0.3, 1.0]"))
+                .find("cycle.icr: 511 has no [[load_gain]] with that icr; add one"),
+            std::string::npos);
 }
 
 TEST(LoadParams, OperatorTimeoutIsCappedAtOneSecond) {

@@ -306,8 +306,26 @@ TEST_F(DriverTest, StatusCarriesTheSensorReadings) {
   EXPECT_NEAR(s.supply_v, 24.5673, 1e-3);  // vcc 970
   EXPECT_NEAR(s.accel_mps2[2], -9.81, 1e-9);
   EXPECT_NEAR(s.slope_rad, 0.0, 0.01);
-  EXPECT_EQ(s.lcd, "24.6V TO");  // no operator yet: timed out
+  EXPECT_EQ(s.lcd, "TO +0.0d");  // no operator yet: timed out; level (lcd.hpp)
   EXPECT_EQ(s.bus.malformed, 0u);
+}
+
+TEST_F(DriverTest, LcdShowsTheSlopeInDegrees) {
+  // The troubleshooting table's "until the LCD reads ≈ 0 deg". Nose up by about 10°: acc¹ = 302,
+  // acc² = 251, acc³ = 374 give by (3.5) a = (9.81·(558 − 604)/268, 9.81·(503 − 502)/263,
+  // 9.81·(451 − 748)/301) = (−1.6838, 0.0373, −9.6796) m/s², ‖a‖ = 9.8250, g1 = −0.17138 and
+  // σ = acos(g1) − π/2 = 0.17223 rad = 9.868° (the joints stand symmetric: αf = αr).
+  start_up();
+  rover.acc = {302, 251, 374};
+  cycles(1500);  // λ = 0.99: 0.99^1500 of the level start remains
+  EXPECT_NEAR(driver.status().slope_rad, 0.172229, 1e-5);
+  EXPECT_EQ(driver.status().lcd, "TO +9.9d");
+  // The operator's STOP latches: "ST"; nose down by the same tilt reads −9.9.
+  OperatorInput stop;
+  stop.stop = true;
+  rover.acc = {256, 251, 374};  // 558 − 512 = +46: a1 = +1.6838
+  cycles(1500, &stop);
+  EXPECT_EQ(driver.status().lcd, "ST -9.9d");
 }
 
 TEST_F(SpinDriverTest, RolkingRunsThroughItsStatesWithinTheJointBounds) {

@@ -49,6 +49,11 @@ const CHARTS = [
     values: (s) => MOTORS.map((m) => s.motors?.[m]?.load_radps),
   },
   {
+    title: 'torque τ of (4.6) [N·m]', unit: 'N·m',
+    series: motorSeries(MOTORS),
+    values: (s) => MOTORS.map((m) => s.motors?.[m]?.torque_nm),
+  },
+  {
     title: 'supply U, Ū [V] and D', unit: 'V',
     series: [
       { label: 'U', stroke: '#d62728', width: 1.5 },

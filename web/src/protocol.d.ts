@@ -150,6 +150,8 @@ export interface MotorStatus {
   velocity_radps: StatusNumber;
   no_load_velocity_radps: StatusNumber;
   load_radps: StatusNumber;
+  /** τ = l/B±_icr(d) of (4.6) [N·m], the external torque's estimate. */
+  torque_nm: StatusNumber;
   commanded_radps: StatusNumber;
   duty: StatusNumber;
   silent_cycles: number;

@@ -13,13 +13,14 @@ import { element } from './dom.js';
 /** @type {MotorName[]} */
 export const MOTORS = ['FL', 'FR', 'CL', 'CR', 'BL', 'BR', 'AF', 'AR'];
 
-/** @typedef {'pos' | 'vel' | 'load' | 'duty' | 'cmd'} RowKey */
+/** @typedef {'pos' | 'vel' | 'load' | 'τ' | 'duty' | 'cmd'} RowKey */
 
 /** @type {[RowKey, string, (m: MotorStatus) => StatusNumber][]} */
 const ROWS = [
   ['pos', 'position p [rad]', (m) => m.position_rad],
   ['vel', 'velocity w [rad/s]', (m) => m.velocity_radps],
   ['load', 'load l = w − ν [rad/s]', (m) => m.load_radps],
+  ['τ', 'torque τ = l/B±(d) of (4.6) [N·m]', (m) => m.torque_nm],
   ['duty', 'duty cycle d', (m) => m.duty],
   ['cmd', 'commanded ŵ [rad/s]', (m) => m.commanded_radps],
 ];
@@ -51,6 +52,20 @@ function times(value, factor) {
 function signed(value, digits) {
   const text = fixed(value, digits);
   return typeof value === 'number' && value >= 0 ? '+' + text : text;
+}
+
+// µ8's 16-character display as the firmware shows it (sensor_controller.hpp): the driver's eight
+// characters (lcd.hpp: a code and the slope σ in degrees, e.g. "TO -2.5d"), then the supply
+// voltage as "%7.2fV". The console has the driver's U, not µ8's own conversion of vcc; both come
+// from the same reading.
+/**
+ * @param {unknown} lcd
+ * @param {unknown} supplyV
+ */
+export function lcdDisplay(lcd, supplyV) {
+  const text = (typeof lcd === 'string' ? lcd : '').padEnd(8).slice(0, 8);
+  const volts = typeof supplyV === 'number' && Number.isFinite(supplyV) ? supplyV.toFixed(2) : '–';
+  return `${text}${volts.padStart(7)}V`;
 }
 
 // 47:12.037 (minutes:seconds.milliseconds), with hours once the mission is that long.
@@ -120,7 +135,7 @@ export class StatusPanel {
     set('st-voltage', `${fixed(s.supply_v, 1)} (${fixed(s.reference_supply_v, 1)}) V`);
     set('st-slope', `${signed(times(s.slope_rad, DEG_PER_RAD), 1)}°`);
     set('st-yaw', `${signed(times(s.yaw_rate_radps, DEG_PER_RAD), 1)}°/s`);
-    set('st-lcd', s.lcd ?? '');
+    set('st-lcd', lcdDisplay(s.lcd, s.supply_v));
 
     for (const [key, , pick] of ROWS) {
       const cells = this.cells[key] ?? [];

@@ -78,13 +78,13 @@ test('the page loads and shows live status', async () => {
   const header = await page.$$eval('#motor-table thead th', (ths) => ths.map((th) => th.textContent));
   assert.deepEqual(header.slice(1), ['FL', 'FR', 'CL', 'CR', 'BL', 'BR', 'AF', 'AR']);
   const rows = await page.$$eval('#motor-table tbody th', (ths) => ths.map((th) => th.textContent));
-  assert.deepEqual(rows, ['pos', 'vel', 'load', 'duty', 'cmd']);
+  assert.deepEqual(rows, ['pos', 'vel', 'load', 'τ', 'duty', 'cmd']);
   assert.match(await page.textContent('#motor-table tbody tr:nth-child(1) td:nth-child(8)'), /^-?\d+\.\d{3}$/,
     'AF position shown');
   assert.ok(first.truth, 'marsokhod run attaches the simulator truth');
   assert.equal(await page.textContent('#view-source'), '(simulator ground truth)');
   assert.equal(await page.locator('#view3d canvas').count(), 1, 'the 3-D view has its canvas');
-  assert.equal(await page.locator('#plot-area .uplot').count(), 4, 'four charts');
+  assert.equal(await page.locator('#plot-area .uplot').count(), 5, 'five charts');
   assert.equal(await page.isDisabled('#config-apply'), true, 'configuration needs control');
   await screenshot(page, 'console-read-only.png');
   assert.deepEqual(page.problems, []);

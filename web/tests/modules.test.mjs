@@ -9,7 +9,7 @@ import { keyboardReading } from '../src/keyboard.js';
 import { readPad, firstStandardPad, mergeReadings, gamepadMessage, neutralReading } from '../src/gamepad.js';
 import { configureMessage } from '../src/config.js';
 import { websocketUrl, addressWithoutToken } from '../src/link.js';
-import { missionTime } from '../src/status.js';
+import { missionTime, lcdDisplay } from '../src/status.js';
 
 const A = 0.145, B = 0.413;
 const close = (actual, expected, tolerance, what) =>
@@ -135,4 +135,12 @@ test('mission time reads like Figure 8.1: minutes, seconds, milliseconds', () =>
   assert.equal(missionTime(3601.5), '1:00:01.500');
   assert.equal(missionTime(0), '00:00.000');
   assert.equal(missionTime(null), '–');
+});
+
+test('lcdDisplay: the driver\'s eight characters, then the voltage as µ8 shows it', () => {
+  // src/driver/lcd.hpp's layout and src/sim/firmware/sensor_controller.cpp's "%7.2fV".
+  assert.equal(lcdDisplay('   -2.5d', 24.1), '   -2.5d  24.10V');
+  assert.equal(lcdDisplay('TO +0.0d', 24.5673), 'TO +0.0d  24.57V');
+  assert.equal(lcdDisplay(undefined, null), '              –V');
+  assert.equal(lcdDisplay('short', 9.5), 'short      9.50V');
 });

@@ -107,6 +107,8 @@ void RoverPhysics::Impl::resolve_ids() {
   }
   ids.tilt_qpos[0] = m.jnt_qposadr[require_id(m, mjOBJ_JOINT, kFrontTiltName)];
   ids.tilt_qpos[1] = m.jnt_qposadr[require_id(m, mjOBJ_JOINT, kRearTiltName)];
+  ids.tilt_dof[0] = m.jnt_dofadr[require_id(m, mjOBJ_JOINT, kFrontTiltName)];
+  ids.tilt_dof[1] = m.jnt_dofadr[require_id(m, mjOBJ_JOINT, kRearTiltName)];
   ids.accelerometer = m.sensor_adr[require_id(m, mjOBJ_SENSOR, kAccelerometerName)];
   ids.stand_weld = require_id(m, mjOBJ_EQUALITY, kTestStandName);
   ids.stand_mocap = m.body_mocapid[require_id(m, mjOBJ_BODY, kTestStandName)];
@@ -263,11 +265,36 @@ void RoverPhysics::Impl::apply_strapped_weights() {
   }
 }
 
+void RoverPhysics::Impl::move_axle_hands() {
+  const double step_rad = kAxleHandRateRadps * model->opt.timestep;
+  for (std::size_t axle = 0; axle < 2; ++axle) {
+    if (!axle_hand_target_rad[axle]) continue;
+    const double target =
+        std::clamp(*axle_hand_target_rad[axle], -kMaxAxleTiltRad, kMaxAxleTiltRad);
+    const double move = std::clamp(target - axle_hand_rad[axle], -step_rad, step_rad);
+    axle_hand_rad[axle] += move;
+    axle_hand_speed_radps[axle] = move / model->opt.timestep;
+  }
+}
+
+void RoverPhysics::Impl::pin_axles_to_hands() {
+  // Kinematic: the hand is rigid, so the hinge is where the hand is, moving at its speed —
+  // before the step (what the dynamics see) and after it (what is read).
+  for (std::size_t axle = 0; axle < 2; ++axle) {
+    if (!axle_hand_target_rad[axle]) continue;
+    data->qpos[ids.tilt_qpos[axle]] = axle_hand_rad[axle];
+    data->qvel[ids.tilt_dof[axle]] = axle_hand_speed_radps[axle];
+  }
+}
+
 void RoverPhysics::step() {
   impl_->update_joint_modes();
   impl_->apply_strapped_weights();
+  impl_->move_axle_hands();
+  impl_->pin_axles_to_hands();
   impl_->apply_skid_sinkage();
   mj_step(impl_->model.get(), impl_->data.get());
+  impl_->pin_axles_to_hands();
 }
 
 void RoverPhysics::place_on_stand(double roll_rad, double pitch_rad) {
@@ -325,6 +352,18 @@ void RoverPhysics::strap_weight(std::size_t wheel, double peak_torque_nm) {
     throw std::invalid_argument("physics: a strapped weight's peak torque must be ≥ 0 N·m");
   }
   impl_->strapped_peak_torque_nm[wheel] = peak_torque_nm;
+}
+
+void RoverPhysics::hold_axle_tilt(std::size_t axle, std::optional<double> tilt_rad) {
+  if (axle >= 2) throw std::out_of_range("physics: no exterior axle " + std::to_string(axle));
+  if (tilt_rad && !std::isfinite(*tilt_rad)) {
+    throw std::invalid_argument("physics: the axle's held tilt must be finite");
+  }
+  if (tilt_rad && !impl_->axle_hand_target_rad[axle]) {
+    impl_->axle_hand_rad[axle] = impl_->data->qpos[impl_->ids.tilt_qpos[axle]];  // takes hold here
+    impl_->axle_hand_speed_radps[axle] = 0.0;
+  }
+  impl_->axle_hand_target_rad[axle] = tilt_rad;
 }
 
 double RoverPhysics::time_s() const { return impl_->data->time; }

@@ -16,6 +16,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 
 #include "core/params.hpp"
 #include "sim/physics/terrain.hpp"
@@ -57,6 +58,9 @@ struct MotorDrive {
   MotorVector stall_torque_nm{};      // the most the motor can deliver
 };
 
+// How fast Procedure 3.4's hand turns an exterior axle.
+inline constexpr double kAxleHandRateRadps = 1.0;
+
 class RoverPhysics {
  public:
   // Builds the MuJoCo model from the geometry and the terrain. Joints start at the motor shafts'
@@ -94,6 +98,12 @@ class RoverPhysics {
   // wheel's hinge, φ its angle (0: the weight at the top). 0 removes it. The stand keeps the
   // chassis level, so φ is measured from the vertical.
   void strap_weight(std::size_t wheel, double peak_torque_nm);
+  // Procedure 3.4's hand on an exterior axle (0 front, 1 rear): it turns the axle's roll θ
+  // relative to the center axle toward `tilt_rad` at kAxleHandRateRadps and holds it there,
+  // rigidly (the hinge follows the hand exactly, without overshoot); a target beyond the hinge's
+  // stops ±kMaxAxleTiltRad rests the axle on the stop. nullopt lets the axle go.
+  // std::out_of_range for an axle other than 0, 1; std::invalid_argument for a non-finite angle.
+  void hold_axle_tilt(std::size_t axle, std::optional<double> tilt_rad);
 
   // How many warnings MuJoCo raised (instability, contact buffer full, …): 0 in a healthy run.
   int mujoco_warning_count() const;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "sim/physics/joint_drive.hpp"
@@ -21,7 +22,7 @@ struct RoverModelIds {
   std::array<int, kWheelCount> wheel_body{}, wheel_geom{}, wheel_block{};
   std::array<int, 2> joint_hinge{}, shaft_hinge{};  // joint ids, for their ranges
   std::array<int, 2> joint_qpos{}, joint_lock{}, joint_coupling{};
-  std::array<int, 2> tilt_qpos{};
+  std::array<int, 2> tilt_qpos{}, tilt_dof{};
   int accelerometer = -1;  // sensordata address
   int stand_weld = -1;     // equality holding the center unit on the calibration stand
   int stand_mocap = -1;    // the stand's mocap index
@@ -55,6 +56,12 @@ struct RoverPhysics::Impl {
   // Weights strapped to wheels (Procedure 4.13): peak gravity torque per wheel [N·m], 0 for none.
   std::array<double, kWheelCount> strapped_peak_torque_nm{};
   void apply_strapped_weights();
+  // Procedure 3.4's hands on the exterior axles: the angle each is turned to (nullopt: none), and
+  // where the hand is now.
+  std::array<std::optional<double>, 2> axle_hand_target_rad{};
+  std::array<double, 2> axle_hand_rad{}, axle_hand_speed_radps{};
+  void move_axle_hands();
+  void pin_axles_to_hands();
 };
 
 }  // namespace marsokhod::sim

@@ -95,6 +95,10 @@ class SimulatedRover {
   void strap_weight(std::size_t wheel, double peak_torque_nm) {
     physics_.strap_weight(wheel, peak_torque_nm);
   }
+  // Procedure 3.4: an exterior axle turned by hand and held (RoverPhysics::hold_axle_tilt).
+  void hold_axle_tilt(std::size_t axle, std::optional<double> tilt_rad) {
+    physics_.hold_axle_tilt(axle, tilt_rad);
+  }
 
  private:
   SensorTruthSample sensor_sample() const;

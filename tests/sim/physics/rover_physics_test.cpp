@@ -317,5 +317,30 @@ TEST(RoverPhysics, TwoRunsAreBitIdentical) {
   EXPECT_EQ(first_imu.accel_mps2, second_imu.accel_mps2);
 }
 
+// Procedure 3.4's hand: at 1 rad/s and 1 ms steps the front axle is at exactly 0.2 rad after 200
+// steps, then held at 0.3; the rear, asked beyond its stop, rests on it at −0.524 rad.
+TEST(RoverPhysics, ProcedureThreeFoursHandTurnsAnAxleAndHoldsIt) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  physics.place_on_stand(0.0, 0.0);
+  run(physics, 50);
+  const double rear_start = physics.imu().rear_tilt_rad;
+  physics.hold_axle_tilt(0, 0.3);
+  physics.hold_axle_tilt(1, -1.0);
+  const double front_start = physics.imu().front_tilt_rad;
+  run(physics, 200);
+  EXPECT_NEAR(physics.imu().front_tilt_rad, front_start + 0.2, 1e-9);
+  EXPECT_NEAR(physics.imu().rear_tilt_rad, rear_start - 0.2, 1e-9);
+  run(physics, 600);
+  EXPECT_NEAR(physics.imu().front_tilt_rad, 0.3, 1e-12);
+  EXPECT_NEAR(physics.imu().rear_tilt_rad, -kMaxAxleTiltRad, 1e-12);
+  expect_healthy(physics);
+  EXPECT_THROW(physics.hold_axle_tilt(2, 0.0), std::out_of_range);
+  EXPECT_THROW(physics.hold_axle_tilt(0, std::nan("")), std::invalid_argument);
+  physics.hold_axle_tilt(0, std::nullopt);  // let go: the axle is free again
+  physics.hold_axle_tilt(1, std::nullopt);
+  run(physics, 10);
+  expect_healthy(physics);
+}
+
 }  // namespace
 }  // namespace marsokhod::sim
