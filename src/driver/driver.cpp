@@ -40,12 +40,12 @@ Driver::Driver(const Params& params, std::optional<JointMemory> kept)
 
 std::optional<JointMemory> Driver::joint_memory() const {
   if (kept_) return kept_;  // not judged yet: pass it on as it came
-  if (!startup_calibrated_) return std::nullopt;
   JointMemory memory;
   if (!status_.joints_known) {
     memory.known = false;
     return memory;
   }
+  if (!positions_known_) return std::nullopt;
   const tracking::MotorsSample& m = motors_.sample();
   const MotorVector p = motion_.joint_positions();
   for (std::size_t k = 0; k < 2; ++k) {
@@ -86,10 +86,21 @@ void Driver::take_kept_joints() {
   }
   motion_.reset_joint_positions(positions);
   status_.joints_known = refused.empty();
+  positions_known_ = refused.empty();
+  joints_restored_ = refused.empty();
   status_.joint_origin = refused.empty() ? origin + " while down)" : "unknown: " + refused;
   kept_.reset();
-  startup_calibrated_ = true;
   startup_.take_joints();
+}
+
+// Procedure 4.3's motion ended where the joints stand after a restart: each shaft at the
+// negative end of its gap, so p = p̄, with p̄ continued from the kept state.
+void Driver::take_up_joint_gaps() {
+  const tracking::MotorsSample& m = motors_.sample();
+  MotorVector shaft{};
+  for (std::size_t i = 0; i < kMotorCount; ++i) shaft[i] = m.position_rad[i] + position_offset_rad_[i];
+  motion_.reset_joint_positions(shaft);
+  status_.joint_origin += ", gaps taken up";
 }
 
 // The joints' positions are unknown: nothing may move them (no gait, command or behaviour).
@@ -187,6 +198,7 @@ void Driver::reset_joint_positions() {
   }
   motion_.reset_joint_positions(shaft);
   status_.joints_known = true;
+  positions_known_ = true;
 }
 
 MotorVector Driver::wanted_duties(double time_s, const MotionInput& input) {
@@ -256,8 +268,12 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   const MotorVector wanted = wanted_duties(time_s, in);
   if (startup_.phase() == StartupPhase::kDone && !startup_calibrated_) {
     startup_calibrated_ = true;
-    reset_joint_positions();  // Procedure 4.3: p⁰ := p̄⁰ of Remark 3.1
-    status_.joint_origin = "Procedure 4.3";
+    if (joints_restored_) {
+      take_up_joint_gaps();
+    } else if (!startup_.continues_joints()) {
+      reset_joint_positions();  // Procedure 4.3: p⁰ := p̄⁰ of Remark 3.1
+      status_.joint_origin = "Procedure 4.3";
+    }
   }
   const bool calibrating = status_.mode == DriverMode::kCalibration;
   if (was_calibrating_ && !calibrating && status_.mode == DriverMode::kDriving) {

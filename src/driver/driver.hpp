@@ -14,7 +14,8 @@
 // are rejected with a reason and the last valid one stands until the timeout.
 //
 // Restarts (joint_memory.hpp): joint_memory() is what to keep of the joints after each cycle; a
-// driver constructed with it continues from there instead of running Procedure 4.3. If the
+// driver constructed with it continues p̄ from there instead of taking the joints vertical, and
+// runs Procedure 4.3's motion where they stand to take up the gaps (p = p̄). If the
 // controllers' registers do not continue the kept state, the joints are unknown: the driver
 // drives the wheels but holds the joints (no gait, no joint command, no behaviour moves them)
 // and says so in its warnings until the operator sets them vertical in calibration mode and
@@ -67,6 +68,7 @@ class Driver {
   void reset_joint_positions();
   void take_kept_joints();  // a restart: the kept state against the joints' first readings
   void hold_unknown_joints();
+  void take_up_joint_gaps();
   void encode_requests();
   std::string lcd_text() const;
   bool on_slope() const;  // the accelerometer off the vertical by more than the slant dead band
@@ -89,6 +91,8 @@ class Driver {
   bool was_calibrating_ = false;
   bool startup_calibrated_ = false;
   std::optional<JointMemory> kept_;  // until the joints' first readings judge it
+  bool joints_restored_ = false;     // a kept state continued: take up the gaps, keep p̄
+  bool positions_known_ = false;     // p̄ known: after Procedure 4.3, or continued
   bool stopping_ = false;  // the operator's stop or timeout is in force
   std::vector<protocol::CanFrame> requests_;
 };

@@ -23,15 +23,9 @@ void Startup::advance() {
     phase_ = params_->safety.dead_man_dog > 0 ? StartupPhase::kEnableDeadMan
                                               : StartupPhase::kCalibrate;
   }
-  if (phase_ == StartupPhase::kCalibrate && continue_joints_ && joints_taken_) {
-    phase_ = StartupPhase::kDone;
-  }
 }
 
-void Startup::take_joints() {
-  joints_taken_ = true;
-  if (continue_joints_ && phase_ == StartupPhase::kCalibrate) phase_ = StartupPhase::kDone;
-}
+void Startup::take_joints() { joints_taken_ = true; }
 
 void Startup::on_configured(std::size_t motor) {
   configured_.at(motor) = true;
@@ -47,7 +41,7 @@ std::array<double, 2> Startup::calibrate(double time_s, const std::array<double,
                                          const std::array<double, 2>& shaft_speed_radps,
                                          const std::array<double, 2>& no_load_speed_radps,
                                          bool on_slope) {
-  if (phase_ != StartupPhase::kCalibrate || continue_joints_) return {0.0, 0.0};
+  if (phase_ != StartupPhase::kCalibrate || (continue_joints_ && !joints_taken_)) return {0.0, 0.0};
   if (!calibration_started_) {
     calibration_started_ = true;
     calibration_start_s_ = time_s;

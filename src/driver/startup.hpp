@@ -20,9 +20,11 @@
 //      below the truth by at most 2·uncertainty·b, on the safe side of the negative bounds, and
 //      exactly uncertainty·b above it on the positive side, which joint_margin.hpp covers;
 //   4. driving.
-// A driver restarted with a kept joint state (joint_memory.hpp) skips Procedure 4.3: the joints
-// are not vertical then. It waits in phase 3 with the joints at rest until the driver has taken
-// the joints' positions from their first readings (take_joints()), and is done.
+// A driver restarted with a kept joint state (joint_memory.hpp) waits in phase 3 with the joints
+// at rest until it has judged that state against the joints' first readings (take_joints()),
+// then runs the same motion: each shaft takes up its gap toward the negative end where the joint
+// stands, bent or not. The kept state gives p̄ there; the motion gives p = p̄ — a joint the
+// brown-out's abrupt stop let swing through its gap is found again.
 // Pure: the phase advances on the responses it is shown and on time given as a value.
 #pragma once
 
@@ -54,7 +56,7 @@ class Startup {
   // Phase 3 without Procedure 4.3: the joints come from a kept state (see above).
   void continue_joints() { continue_joints_ = true; }
   bool continues_joints() const { return continue_joints_; }
-  // The kept state was judged (restored or refused): phase 3 ends when continue_joints().
+  // The kept state was judged (restored or refused): phase 3's motion may begin.
   void take_joints();
 
   // Phase 1: the controllers that answered 0xi3 this cycle.

@@ -432,32 +432,34 @@ TEST_F(RestartDriverTest, ContinuesFromTheKeptJointsWithoutProcedure43) {
   inbox.clear();  // the computer was down: the restarted driver starts on an empty bus
   Driver restarted(params, kept);
   double joint_duty = 0.0;
-  for (int k = 0; k < 100 && restarted.status().mode != DriverMode::kDriving; ++k) {
+  for (int k = 0; k < 400 && restarted.status().mode != DriverMode::kDriving; ++k) {
     joint_duty = std::max(joint_duty, restarted_cycle(restarted));
   }
   const DriverStatus& s = restarted.status();
   ASSERT_EQ(s.mode, DriverMode::kDriving);
-  EXPECT_EQ(joint_duty, 0.0);  // Procedure 4.3 did not run: it would have driven them at −0.08
+  // Procedure 4.3's motion where the joints stand: the shafts take up their gaps at −0.08.
+  EXPECT_NEAR(joint_duty, params.operator_input.calibration_duty, 0.002);
   EXPECT_TRUE(s.joints_known);
   // The shafts turned on for the first driver's last cycle, which it did not see any more (the
-  // scripted motors stop with the next request): the counts carry that, and (4.1) along it.
+  // scripted motors stop with the next request), then took up the gaps: the counts carry both,
+  // and at the gap's negative end p = p̄.
   EXPECT_EQ(s.joint_origin.rfind("kept across a restart (µ6 moved -0.00", 0), 0U) << s.joint_origin;
+  EXPECT_NE(s.joint_origin.find(", gaps taken up"), std::string::npos) << s.joint_origin;
   constexpr double kOneCount = 2.0 * std::numbers::pi / 115000.0;
   for (std::size_t k = 0; k < 2; ++k) {
     const std::size_t j = k == 0 ? kFrontJoint : kRearJoint;
     const double moved = rover.shaft_rad[j] - shaft_at_reading[j];
-    EXPECT_LT(moved, -0.004) << j;  // the gait was bending both joints toward their negative end
-    EXPECT_NEAR(s.motors[j].shaft_position_rad, kept.joints[k].shaft_rad + moved, kOneCount) << j;
-    EXPECT_DOUBLE_EQ(s.motors[j].position_rad,
-                     adaptation::backlash_position(s.motors[j].shaft_position_rad,
-                                                   kept.joints[k].joint_rad,
-                                                   params.motors.backlash_rad[j]))
-        << j;
+    // The scripted shafts never meet a joint: the take-up ends after the widest gap, (1 + u)·b.
+    EXPECT_LT(moved, -(1.0 + params.joints.backlash_uncertainty) * params.motors.backlash_rad[j]) << j;
+    EXPECT_NEAR(s.motors[j].shaft_position_rad, kept.joints[k].shaft_rad + moved, 2 * kOneCount) << j;
+    EXPECT_DOUBLE_EQ(s.motors[j].position_rad, s.motors[j].shaft_position_rad) << j;
   }
   EXPECT_NE(before.motors[kFrontJoint].shaft_position_rad, 0.0);
   EXPECT_NE(restarted.joint_memory(), kept);  // its own now, the shafts' new readings in it
-  // The gait goes on from there inside (5.3).
+  // The gait goes on from there inside (5.3) — once the driver has pulled back what the take-up
+  // moved out: the scripted shafts have no joint to meet and took their p past p7_min.
   const OperatorInput walk = rolking();
+  for (int k = 0; k < 200; ++k) restarted_cycle(restarted, &walk);
   for (int k = 0; k < 1500; ++k) {
     restarted_cycle(restarted, &walk);
     const auto& m = restarted.status().motors;
@@ -473,7 +475,7 @@ TEST_F(RestartDriverTest, ARefusedStateHoldsTheJointsUntilCalibrationMode) {
   kept.joints[0].reading.stp = static_cast<std::uint16_t>(kept.joints[0].reading.stp + 777);
   inbox.clear();
   Driver restarted(params, kept);
-  for (int k = 0; k < 100 && restarted.status().mode != DriverMode::kDriving; ++k) {
+  for (int k = 0; k < 400 && restarted.status().mode != DriverMode::kDriving; ++k) {
     restarted_cycle(restarted);
   }
   ASSERT_EQ(restarted.status().mode, DriverMode::kDriving);
@@ -513,7 +515,7 @@ TEST_F(RestartDriverTest, AStateKeptAsUnknownStaysUnknown) {
   kept.known = false;
   inbox.clear();
   Driver restarted(params, kept);
-  for (int k = 0; k < 100 && restarted.status().mode != DriverMode::kDriving; ++k) {
+  for (int k = 0; k < 400 && restarted.status().mode != DriverMode::kDriving; ++k) {
     restarted_cycle(restarted);
   }
   EXPECT_FALSE(restarted.status().joints_known);
