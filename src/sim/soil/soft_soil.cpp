@@ -11,8 +11,9 @@ namespace {
 // Repose relaxation around a wheel: this many cells beyond its box, at most this many passes.
 constexpr int kRelaxMarginCells = 3;
 constexpr int kRelaxPasses = 4;
-// The exit angle's search: steps over [−θ1, 0].
+// The exit angle's search: steps over [−θ1, 0], and how far above its bowl a rim still touches.
 constexpr int kExitSteps = 16;
+constexpr double kTouchM = 1e-4;
 
 }  // namespace
 
@@ -29,18 +30,20 @@ Vec3 SoftSoil::ground_normal(const WheelKinematics& kinematics, std::size_t whee
                       2.0 * contacts_.at(wheel).wheel().rim_radius_m);
 }
 
-// θ2: stepping back from the bottom, where the rim rises above the soil (interpolated between the
-// steps, so that it moves continuously with the wheel).
+// θ2: stepping back from the bottom, where the rim rises above the soil further than it is above it
+// at the bottom (a rim resting in its rebound touches its whole bowl), interpolated between the
+// steps so that it moves continuously with the wheel.
 double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
                                 double radius_m, double sinkage_m) const {
   const double entry = std::acos(1.0 - std::clamp(sinkage_m, 0.0, radius_m) / radius_m);
-  const auto clearance = [&](double theta) {  // of the rim above the soil, > 0 when free
+  const auto height = [&](double theta) {  // of the rim above the soil
     const Vec3 rim = axis_point + (radius_m * std::sin(theta)) * forward -
                      (radius_m * std::cos(theta)) * up;
-    return rim[2] - grid_.surface_m(rim[0], rim[1]) - grid_.touch_tolerance_m(rim[0], rim[1]);
+    return rim[2] - grid_.surface_m(rim[0], rim[1]);
   };
+  const double bottom = std::max(height(0.0), 0.0);
+  const auto clearance = [&](double theta) { return height(theta) - bottom - kTouchM; };
   double previous_theta = 0.0, previous = clearance(0.0);
-  if (previous > 0.0) return 0.0;
   for (int k = 1; k <= kExitSteps; ++k) {
     const double theta = -entry * k / kExitSteps;
     const double current = clearance(theta);

@@ -7,8 +7,9 @@
 // the wheel's own, nearest the normal) below the undisturbed level, along the normal — less
 // unloading_stiffness_ratio times the gap where the rim has risen above the soil it pressed; its
 // exit angle θ2 is the furthest angle behind the bottom (down to −θ1, searched in steps of θ1/16
-// and interpolated) at which the rim still touches the soil: 0 behind a rolling wheel, −θ1 under one that sank in place. The
-// contact gives the wrench. Then, again in wheel order, the grid yields: press (plastic sinkage, soil to the
+// and interpolated) at which the rim is no higher above the soil than at its bottom (+0.1 mm):
+// about 0 behind a rolling wheel, −θ1 under one that sank in place. The contact gives the
+// wrench. Then, again in wheel order, the grid yields: press (plastic sinkage, soil to the
 // patch's rim), excavation, relaxation to the angle of repose around the wheel.
 //
 // Excavation: a blade groove of height h across the width b carries the soil it fills; rolling

@@ -52,6 +52,8 @@ void validate(const SoilParams& soil) {
   require_range(owner, "repose_angle_rad", soil.repose_angle_rad, 0.01, half_pi - 0.01, "rad");
   require_range(owner, "displaced_fraction", soil.displaced_fraction, 0.0, 1.0, "");
   require_range(owner, "excavation_fraction", soil.excavation_fraction, 0.0, 1.0, "");
+  require_range(owner, "vertical_damping_pa_s_per_m", soil.vertical_damping_pa_s_per_m, 0.0,
+                1e9, "Pa s/m");
   require_range(owner, "unloading_stiffness_ratio", soil.unloading_stiffness_ratio, 1.0, 1e4, "");
 }
 

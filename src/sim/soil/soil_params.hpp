@@ -35,6 +35,10 @@ struct SoilParams {
   // ratio times the gap that opens under it (Bekker's curve is for first loading only; SCM and
   // Wong's repetitive-loading tests unload far stiffer). Not from a table: 10.
   double unloading_stiffness_ratio = 10.0;
+  // Vertical damping of the contact, per unit area: σ_d = R·v, v the rim's sinking speed (SCM's
+  // damping R, as Chrono's SCM terrain has it; 3e4 Pa·s/m is its demonstrations' value, not a
+  // soil measurement). It keeps a rover from bouncing on the soil's elastic unloading.
+  double vertical_damping_pa_s_per_m = 3e4;
   // Of the soil a blade groove lifts out while the wheel slips, the share that does not fall back
   // into the rut but lands behind the wheel (excavation).
   double excavation_fraction = 1.0;

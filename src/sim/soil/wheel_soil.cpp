@@ -114,6 +114,14 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
   }
 }
 
+void WheelSoilContact::add_damping(double contact_area_m2, const Frame& frame,
+                                   const Vec3& velocity_mps, WheelWrench& wrench) const {
+  const double normal = dot(wrench.force_n, frame.up);
+  double damping = -soil_.vertical_damping_pa_s_per_m * contact_area_m2 * dot(velocity_mps, frame.up);
+  damping = std::max(damping, -std::max(normal, 0.0));  // never sucks the wheel in
+  wrench.force_n += damping * frame.up;
+}
+
 void WheelSoilContact::add_sidewall(std::span<const double> lane_sinkage_m, const Frame& frame,
                                     WheelWrench& wrench) const {
   double mean = 0.0;
@@ -169,6 +177,7 @@ WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3
   frame.lateral_mps = dot(kinematics.velocity_mps, kinematics.axle);
   frame.slip = regularised_slip(wheel_.shear_radius_m() * frame.spin_radps, frame.travel_mps);
   frame.handedness = direction_ * static_cast<int>(wheel_.handedness);
+  double contact_area = 0.0;
   for (int lane = 0; lane < wheel_.lanes; ++lane) {
     const double sinkage = lane_sinkage_m[static_cast<std::size_t>(lane)];
     const auto first = shear_t_.begin() + lane * wheel_.arc_samples;
@@ -182,11 +191,15 @@ WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3
     const ContactArc arc = contact_arc(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit);
     advect_lane(lane, arc, frame.spin_radps, frame.travel_mps, frame.lateral_mps, dt_s);
     add_lane_stresses(lane, arc, frame, wrench);
+    contact_area += (arc.entry_rad - arc.exit_rad) * wheel_.rim_radius_m * wheel_.width_m / wheel_.lanes;
     wrench.sinkage_m = std::max(wrench.sinkage_m, std::min(sinkage, wheel_.rim_radius_m));
     wrench.diagnostics.entry_angle_rad = std::max(wrench.diagnostics.entry_angle_rad, arc.entry_rad);
     wrench.diagnostics.in_contact = true;
   }
-  if (wrench.diagnostics.in_contact) add_sidewall(lane_sinkage_m, frame, wrench);
+  if (wrench.diagnostics.in_contact) {
+    add_damping(contact_area, frame, kinematics.velocity_mps, wrench);
+    add_sidewall(lane_sinkage_m, frame, wrench);
+  }
   WheelDiagnostics& diagnostics = wrench.diagnostics;
   diagnostics.slip = direction_ * frame.slip;
   diagnostics.normal_load_n = dot(wrench.force_n, frame.up);

@@ -18,6 +18,10 @@
 // sign (beyond 1 mm/s) the motion frame mirrors (x → −x, the state mirrored along the arc and j_t
 // negated, the blades' handedness flipped with it).
 //
+// Damping: over the contact's area A = Σ_lanes Δb·r·(θ1 − θ2), a force −R·A·v_up along the wheel's
+// up (SoilParams::vertical_damping_pa_s_per_m), never pulling the wheel down into the soil beyond
+// cancelling the soil's own normal force.
+//
 // Sidewall: moving sideways, the leading side face bulldozes soil with Rankine's passive pressure
 // (sidewall_resistance_n), mobilised like the shear by the arc's mean lateral displacement.
 #pragma once
@@ -90,6 +94,8 @@ class WheelSoilContact {
                    double lateral_mps, double dt_s);
   void add_lane_stresses(int lane, const ContactArc& arc, const Frame& frame,
                          WheelWrench& wrench) const;
+  void add_damping(double contact_area_m2, const Frame& frame, const Vec3& velocity_mps,
+                   WheelWrench& wrench) const;
   void add_sidewall(std::span<const double> lane_sinkage_m, const Frame& frame,
                     WheelWrench& wrench) const;
 

@@ -42,7 +42,7 @@ double run_vertical_rig(SoftSoil& soil, double spin_radps, double speed_mps, dou
 // A wheel set down on flat sand settles where Bekker's plate pressure under every point of its rim
 // carries its load: the contact is symmetric (the soil it pressed reaches up behind it as in
 // front), so its sinkage is that of a front-only arc carrying half the load, and nothing pushes it
-// along the ground. The drop overshoots a little; the rim then rests within the elastic rebound.
+// along the ground. The rim rests where it pressed the soil (within its elastic rebound).
 // (Within 2 %: the contact samples 2θ1 with 24 points where the reference samples θ1.)
 TEST(SoftSoil, StandingWheelSettlesAtBekkersStaticSinkage) {
   SoftSoil soil = one_wheel_on_flat_sand();

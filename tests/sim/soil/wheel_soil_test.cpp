@@ -129,6 +129,21 @@ TEST(WheelSoil, StillWheelIsHeldLikeASpring) {
   EXPECT_LT(held_twice, 2.0 * held);
 }
 
+// Vertical damping: a wheel sinking at 0.1 m/s is pushed up harder than a still one, by R·A·v; one
+// rising fast is never pulled down into the soil.
+TEST(WheelSoil, VerticalDampingResistsSinkingButNeverSucks) {
+  const std::vector<double> lanes(3, 0.02);
+  const auto normal = [&](double vertical_mps) {
+    WheelSoilContact contact(dry_sand(), WheelGeometry{});
+    return contact.step({{0, 0, 0.3}, {0, 1, 0}, {0, 0, vertical_mps}, 0.0}, kUp, lanes, kDt)
+        .diagnostics.normal_load_n;
+  };
+  const double still = normal(0.0);
+  const double area = std::acos(1.0 - 0.02 / 0.115) * 0.115 * 0.15;  // θ1·r·b, exit at 0
+  EXPECT_NEAR(normal(-0.1) - still, 3e4 * area * 0.1, 1e-9);
+  EXPECT_NEAR(normal(10.0), 0.0, 1e-9);
+}
+
 // Regular at and near rest: speeds of 1e-12 give finite forces, continuous with rest.
 TEST(WheelSoil, RegularAtLowSpeed) {
   const std::vector<double> lanes(3, 0.02);
