@@ -76,6 +76,7 @@ RoverPhysics::Impl::Impl(const Params& params_in, const TerrainSpec& terrain, do
   start_joints();
   place_on_terrain(terrain);
   resolve_terrain_materials(terrain);
+  build_soft_soil(terrain);
   mj_forward(model.get(), data.get());
 }
 
@@ -267,6 +268,7 @@ void RoverPhysics::step() {
   impl_->update_joint_modes();
   impl_->apply_strapped_weights();
   impl_->apply_skid_sinkage();
+  impl_->apply_soft_soil();
   mj_step(impl_->model.get(), impl_->data.get());
 }
 

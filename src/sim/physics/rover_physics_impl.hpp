@@ -3,11 +3,13 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "sim/physics/joint_drive.hpp"
 #include "sim/physics/mujoco_model.hpp"
 #include "sim/physics/rover_physics.hpp"
+#include "sim/soil/soft_soil.hpp"
 
 namespace marsokhod::sim {
 
@@ -39,6 +41,8 @@ struct RoverPhysics::Impl {
   void apply_joint_lock_brake(std::size_t slot, double no_load_speed_radps);
   void resolve_terrain_materials(const TerrainSpec& terrain);
   void apply_skid_sinkage();
+  void build_soft_soil(const TerrainSpec& terrain);
+  void apply_soft_soil();
 
   Params params;
   ModelPtr model;
@@ -55,6 +59,9 @@ struct RoverPhysics::Impl {
   // Weights strapped to wheels (Procedure 4.13): peak gravity torque per wheel [N·m], 0 for none.
   std::array<double, kWheelCount> strapped_peak_torque_nm{};
   void apply_strapped_weights();
+  // Soft soil under the wheels (rover_soft_soil.cpp), when the ground's material has one.
+  std::optional<soil::SoftSoil> soft_soil;
+  std::array<soil::WheelWrench, kWheelCount> soil_wrenches{};  // the last step's
 };
 
 }  // namespace marsokhod::sim

@@ -1,6 +1,7 @@
 #include "sim/soil/wheel_soil.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -148,6 +149,21 @@ void WheelSoilContact::add_sidewall(std::span<const double> lane_sinkage_m, cons
   wrench.diagnostics.sidewall_n = force;
 }
 
+WheelSoilContact::Frame WheelSoilContact::motion_frame(const WheelKinematics& kinematics,
+                                                       const Vec3& forward_wheel,
+                                                       double travel_mps) const {
+  Frame frame;
+  frame.forward = static_cast<double>(direction_) * forward_wheel;
+  frame.axle = kinematics.axle;
+  frame.up = cross(forward_wheel, kinematics.axle);
+  frame.spin_radps = direction_ * kinematics.spin_radps;
+  frame.travel_mps = direction_ * travel_mps;
+  frame.lateral_mps = dot(kinematics.velocity_mps, kinematics.axle);
+  frame.slip = regularised_slip(wheel_.shear_radius_m() * frame.spin_radps, frame.travel_mps);
+  frame.handedness = direction_ * static_cast<int>(wheel_.handedness);
+  return frame;
+}
+
 WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3& ground_normal,
                                    std::span<const double> lane_sinkage_m,
                                    std::span<const double> lane_exit_rad, double dt_s) {
@@ -168,23 +184,14 @@ WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3
   const double rim_speed = wheel_.shear_radius_m() * kinematics.spin_radps;
   const double travel = dot(kinematics.velocity_mps, forward_wheel);
   update_direction(rim_speed, travel);
-  Frame frame;
-  frame.forward = static_cast<double>(direction_) * forward_wheel;
-  frame.axle = kinematics.axle;
-  frame.up = cross(forward_wheel, kinematics.axle);
-  frame.spin_radps = direction_ * kinematics.spin_radps;
-  frame.travel_mps = direction_ * travel;
-  frame.lateral_mps = dot(kinematics.velocity_mps, kinematics.axle);
-  frame.slip = regularised_slip(wheel_.shear_radius_m() * frame.spin_radps, frame.travel_mps);
-  frame.handedness = direction_ * static_cast<int>(wheel_.handedness);
+  const Frame frame = motion_frame(kinematics, forward_wheel, travel);
   double contact_area = 0.0;
   for (int lane = 0; lane < wheel_.lanes; ++lane) {
     const double sinkage = lane_sinkage_m[static_cast<std::size_t>(lane)];
-    const auto first = shear_t_.begin() + lane * wheel_.arc_samples;
     if (!(sinkage > 0.0)) {  // released: the soil the rim left keeps no displacement
-      std::fill(first, first + wheel_.arc_samples, 0.0);
-      std::fill(shear_y_.begin() + lane * wheel_.arc_samples,
-                shear_y_.begin() + (lane + 1) * wheel_.arc_samples, 0.0);
+      const auto first = static_cast<std::ptrdiff_t>(lane * wheel_.arc_samples);
+      std::fill(shear_t_.begin() + first, shear_t_.begin() + first + wheel_.arc_samples, 0.0);
+      std::fill(shear_y_.begin() + first, shear_y_.begin() + first + wheel_.arc_samples, 0.0);
       continue;
     }
     const double exit = lane_exit_rad.empty() ? 0.0 : lane_exit_rad[static_cast<std::size_t>(lane)];

@@ -90,6 +90,8 @@ class WheelSoilContact {
  private:
   struct Frame;
   void update_direction(double rim_speed_mps, double travel_speed_mps);
+  Frame motion_frame(const WheelKinematics& kinematics, const Vec3& forward_wheel,
+                     double travel_mps) const;
   void advect_lane(int lane, const ContactArc& arc, double spin_radps, double travel_mps,
                    double lateral_mps, double dt_s);
   void add_lane_stresses(int lane, const ContactArc& arc, const Frame& frame,
