@@ -71,6 +71,25 @@ TEST(RoverSoftSoil, DrivesForwardWithSlip) {
   EXPECT_LT(std::abs(soft_lateral), 0.01);  // the blades' sideways pushes balance
 }
 
+// Up a soft-sand slope, driving all wheels at 2 rad/s: a wheel's drawbar pull reaches at most
+// 0.24 of its load (wheel_stress_test), a 13.5° climb; the rover still gains ground on 10° and
+// slides back on 25°, below sand's 28° angle of repose.
+TEST(RoverSoftSoil, ClimbsTenDegreesButNotTwentyFive) {
+  const auto advanced_m = [](double slope_deg) {
+    TerrainSpec terrain = testing::slope_deg(slope_deg);
+    terrain.ground = soft_sand();
+    RoverPhysics physics(Params{}, terrain);
+    run(physics, 500);
+    const double start = physics.truth().position_m[0];
+    physics.set_drive(drive_at(all_wheels(2.0)));
+    run(physics, 5000);
+    expect_healthy(physics);
+    return physics.truth().position_m[0] - start;
+  };
+  EXPECT_GT(advanced_m(10.0), 0.3);
+  EXPECT_LT(advanced_m(25.0), 0.0);
+}
+
 TEST(RoverSoftSoil, TwoRunsAreBitIdentical) {
   const auto run_once = [] {
     RoverPhysics physics(Params{}, soft_flat());
