@@ -58,6 +58,7 @@ SoilGrid::SoilGrid(GridSpec spec, SoilParams soil,
     }
   }
   initial_ = surface_;
+  repose_step_m_ = spec_.cell_m * std::tan(soil_.repose_angle_rad) + 1e-12;
 }
 
 double SoilGrid::bilinear(const std::vector<double>& field, const std::vector<double>* added,
@@ -133,15 +134,20 @@ void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
 
 Footprint SoilGrid::press(const Cylinder& wheel) {
   Footprint footprint;
-  const double reach = wheel.radius_m + 0.5 * wheel.width_m;
+  // The cylinder's shadow: half its width along the axle, its radius across.
+  const auto reach = [&](double axle_component) {
+    return std::abs(axle_component) * 0.5 * wheel.width_m +
+           wheel.radius_m * std::sqrt(std::max(1.0 - axle_component * axle_component, 0.0));
+  };
   const auto cell_of = [&](double coordinate, double origin, int cells) {
     return std::clamp(static_cast<int>(std::floor((coordinate - origin) / spec_.cell_m)), 0,
                       cells - 1);
   };
-  footprint.min_x = cell_of(wheel.center_m[0] - reach, spec_.origin_x_m, spec_.cells_x);
-  footprint.max_x = cell_of(wheel.center_m[0] + reach, spec_.origin_x_m, spec_.cells_x);
-  footprint.min_y = cell_of(wheel.center_m[1] - reach, spec_.origin_y_m, spec_.cells_y);
-  footprint.max_y = cell_of(wheel.center_m[1] + reach, spec_.origin_y_m, spec_.cells_y);
+  const double reach_x = reach(wheel.axle[0]), reach_y = reach(wheel.axle[1]);
+  footprint.min_x = cell_of(wheel.center_m[0] - reach_x, spec_.origin_x_m, spec_.cells_x);
+  footprint.max_x = cell_of(wheel.center_m[0] + reach_x, spec_.origin_x_m, spec_.cells_x);
+  footprint.min_y = cell_of(wheel.center_m[1] - reach_y, spec_.origin_y_m, spec_.cells_y);
+  footprint.max_y = cell_of(wheel.center_m[1] + reach_y, spec_.origin_y_m, spec_.cells_y);
   const double area = spec_.cell_m * spec_.cell_m;
   double displaced_m3 = 0.0;
   for (int iy = footprint.min_y; iy <= footprint.max_y; ++iy) {
@@ -164,6 +170,7 @@ Footprint SoilGrid::press(const Cylinder& wheel) {
     }
   }
   std::sort(footprint.contact_cells.begin(), footprint.contact_cells.end());
+  shrink_to_contact(footprint);
   // The patch's rim: the 8-neighbours of contact cells that the wheel does not touch.
   std::vector<int> rim_cells;
   for (int cell : footprint.contact_cells) {
@@ -188,6 +195,24 @@ Footprint SoilGrid::press(const Cylinder& wheel) {
     }
   }
   return footprint;
+}
+
+// The box of the contact cells (empty when none), where relax() then works.
+void SoilGrid::shrink_to_contact(Footprint& footprint) const {
+  if (footprint.contact_cells.empty()) {
+    footprint.max_x = footprint.min_x - 1;
+    footprint.max_y = footprint.min_y - 1;
+    return;
+  }
+  footprint.min_x = footprint.min_y = std::numeric_limits<int>::max();
+  footprint.max_x = footprint.max_y = std::numeric_limits<int>::min();
+  for (int cell : footprint.contact_cells) {
+    const int cx = cell % spec_.cells_x, cy = cell / spec_.cells_x;
+    footprint.min_x = std::min(footprint.min_x, cx);
+    footprint.max_x = std::max(footprint.max_x, cx);
+    footprint.min_y = std::min(footprint.min_y, cy);
+    footprint.max_y = std::max(footprint.max_y, cy);
+  }
 }
 
 void SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, const Vec3& toward,
@@ -241,8 +266,7 @@ void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {
   const int x1 = std::min(footprint.max_x + margin_cells, spec_.cells_x - 1);
   const int y0 = std::max(footprint.min_y - margin_cells, 0);
   const int y1 = std::min(footprint.max_y + margin_cells, spec_.cells_y - 1);
-  // A tiny tolerance stops endless passes over differences that rounding keeps at the limit.
-  const double limit = spec_.cell_m * std::tan(soil_.repose_angle_rad) + 1e-12;
+  const double limit = repose_step_m_;
   for (int pass = 0; pass < passes; ++pass) {
     bool moved = false;
     for (int iy = y0; iy <= y1; ++iy) {

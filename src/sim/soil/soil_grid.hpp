@@ -58,7 +58,7 @@ struct Cylinder {
 // The cells a press touched, for excavation and relaxation to act on.
 struct Footprint {
   std::vector<int> contact_cells;  // cell indices, ascending
-  int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // the box the press examined
+  int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // their box (empty: max < min)
 };
 
 class SoilGrid {
@@ -106,12 +106,15 @@ class SoilGrid {
                   double x_m, double y_m) const;
   double rim_below_m(const Cylinder& wheel, double x_m, double y_m) const;
   void spread(const std::vector<int>& cells, double volume_m3);
+  void shrink_to_contact(Footprint& footprint) const;
   bool relax_pair(std::size_t higher_or_lower, std::size_t other, double limit_m);
 
   GridSpec spec_;
   SoilParams soil_;
   std::vector<double> surface_, sinkage_, compaction_, initial_;
   std::vector<unsigned char> mark_;  // scratch: 1 contact, 2 rim
+  double repose_step_m_ = 0.0;       // the steepest difference of neighbours, cell·tan(repose)
+  // (A tiny tolerance in it stops endless passes over differences rounding keeps at the limit.)
   SoilVolumes volumes_;
 };
 

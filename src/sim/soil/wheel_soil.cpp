@@ -31,6 +31,7 @@ WheelSoilContact::WheelSoilContact(SoilParams soil, WheelGeometry wheel)
     : soil_(std::move(soil)), wheel_(wheel) {
   validate(soil_);
   validate(wheel_);
+  strength_ = shear_strength(soil_);
   const auto size = static_cast<std::size_t>(wheel_.lanes * wheel_.arc_samples);
   shear_t_.assign(size, 0.0);
   shear_y_.assign(size, 0.0);
@@ -104,7 +105,7 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
     const Vec3 outward = s * frame.forward - c * frame.up;  // from the centre to the rim
     const Vec3 tangent = c * frame.forward + s * frame.up;
     const double sigma = normal_stress_pa(soil_, arc, r, b, theta);
-    const SurfaceShear tau = rim_shear(soil_, wheel_, frame.handedness, sigma,
+    const SurfaceShear tau = rim_shear(strength_, wheel_, frame.handedness, sigma,
                                        shear_t_[base + k], shear_y_[base + k]);
     const Vec3 normal_force = (-sigma * r * area) * outward;
     const Vec3 shear_force =

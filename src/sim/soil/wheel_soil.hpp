@@ -103,6 +103,7 @@ class WheelSoilContact {
 
   SoilParams soil_;
   WheelGeometry wheel_;
+  ShearStrength strength_;
   int direction_ = 1;
   std::vector<double> shear_t_, shear_y_, scratch_;
 };

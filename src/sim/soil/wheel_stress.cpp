@@ -27,7 +27,8 @@ ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinka
                        double slip, double exit_rad) {
   ContactArc arc;
   const double sinkage = std::clamp(sinkage_m, 0.0, rim_radius_m);
-  arc.entry_rad = std::acos(1.0 - sinkage / rim_radius_m);
+  arc.cos_entry = 1.0 - sinkage / rim_radius_m;
+  arc.entry_rad = std::acos(arc.cos_entry);
   arc.exit_rad = std::clamp(exit_rad, -arc.entry_rad, 0.0);
   const double ratio = std::clamp(soil.max_stress_angle_c1 + soil.max_stress_angle_c2 * slip,
                                   0.0, 1.0);
@@ -46,8 +47,8 @@ double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double ri
   }
   const double n = arc.sinkage_exponent;
   const double modulus = soil.cohesive_modulus / width_m + soil.frictional_modulus;
-  const double depth = std::max(std::cos(equivalent) - std::cos(arc.entry_rad), 0.0);
-  return modulus * std::pow(rim_radius_m, n) * std::pow(depth, n);
+  const double depth = std::max(std::cos(equivalent) - arc.cos_entry, 0.0);
+  return modulus * std::pow(rim_radius_m * depth, n);
 }
 
 double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m) {
@@ -60,15 +61,22 @@ double metal_shear_pa(const SoilParams& soil, double normal_pa, double displacem
          mobilised(displacement_m, soil.shear_modulus_m);
 }
 
-SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,
+ShearStrength shear_strength(const SoilParams& soil) {
+  return {soil.cohesion_pa, std::tan(soil.friction_angle_rad),
+          std::tan(soil.soil_metal_friction_angle_rad), soil.shear_modulus_m};
+}
+
+SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel, int handedness,
                        double normal_pa, double tangential_displacement_m,
                        double lateral_displacement_m) {
   const double jt = tangential_displacement_m, jy = lateral_displacement_m;
+  const double soil_strength = strength.cohesion_pa + normal_pa * strength.tan_friction;
+  const double K = strength.shear_modulus_m;
   if (!wheel.bladed) {
     // Isotropic: the soil's strength along the displacement's own direction.
     const double length = std::hypot(jt, jy);
     if (length <= 0.0) return {};
-    const double tau = soil_shear_pa(soil, normal_pa, length);
+    const double tau = soil_strength * mobilised(length, K);
     return {tau * jt / length, tau * jy / length};
   }
   const double h = handedness < 0 ? -1.0 : 1.0;
@@ -76,9 +84,17 @@ SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int h
   const double cos_i = std::cos(wheel.blade_inclination_rad);
   const double along_t = h * sin_i, along_y = cos_i;      // b, along the blade
   const double across_t = cos_i, across_y = -h * sin_i;   // n_b, across it
-  const double across = soil_shear_pa(soil, normal_pa, jt * across_t + jy * across_y);
-  const double along = metal_shear_pa(soil, normal_pa, jt * along_t + jy * along_y);
+  const double across = soil_strength * mobilised(jt * across_t + jy * across_y, K);
+  const double along =
+      normal_pa * strength.tan_metal_friction * mobilised(jt * along_t + jy * along_y, K);
   return {across * across_t + along * along_t, across * across_y + along * along_y};
+}
+
+SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,
+                       double normal_pa, double tangential_displacement_m,
+                       double lateral_displacement_m) {
+  return rim_shear(shear_strength(soil), wheel, handedness, normal_pa, tangential_displacement_m,
+                   lateral_displacement_m);
 }
 
 double steady_shear_displacement_m(const ContactArc& arc, double shear_radius_m, double slip,
@@ -99,11 +115,12 @@ PlanarForces steady_wheel_forces(const SoilParams& soil, const WheelGeometry& wh
   const int samples = wheel.arc_samples;
   const double step = span / samples;
   const int handedness = static_cast<int>(wheel.handedness);
+  const ShearStrength strength = shear_strength(soil);
   for (int k = 0; k < samples; ++k) {
     const double theta = arc.entry_rad - (k + 0.5) * step;
     const double sigma = normal_stress_pa(soil, arc, r, b, theta);
     const double j = steady_shear_displacement_m(arc, rs, slip, theta);
-    const SurfaceShear tau = rim_shear(soil, wheel, handedness, sigma, j, 0.0);
+    const SurfaceShear tau = rim_shear(strength, wheel, handedness, sigma, j, 0.0);
     const double area = step * b;
     forces.drawbar_pull_n += (tau.tangential_pa * rs * std::cos(theta) - sigma * r * std::sin(theta)) * area;
     forces.vertical_load_n += (sigma * r * std::cos(theta) + tau.tangential_pa * rs * std::sin(theta)) * area;

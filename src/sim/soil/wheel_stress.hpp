@@ -36,6 +36,7 @@ double regularised_slip(double rim_speed_mps, double travel_speed_mps);
 
 struct ContactArc {
   double entry_rad = 0.0;         // θ1
+  double cos_entry = 1.0;         // cos θ1 = 1 − z/r
   double max_stress_rad = 0.0;    // θm
   double exit_rad = 0.0;          // θ2
   double sinkage_exponent = 1.0;  // n
@@ -63,6 +64,17 @@ struct SurfaceShear {
   double tangential_pa = 0.0;
   double lateral_pa = 0.0;
 };
+// The soil's shear constants, their tangents taken once (a wheel's contact keeps one).
+struct ShearStrength {
+  double cohesion_pa = 0.0;
+  double tan_friction = 0.0;        // tan φ
+  double tan_metal_friction = 0.0;  // tan δ
+  double shear_modulus_m = 0.01;    // K
+};
+ShearStrength shear_strength(const SoilParams& soil);
+SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel, int handedness,
+                       double normal_pa, double tangential_displacement_m,
+                       double lateral_displacement_m);
 SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,
                        double normal_pa, double tangential_displacement_m,
                        double lateral_displacement_m);

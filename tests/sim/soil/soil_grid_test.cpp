@@ -73,8 +73,6 @@ TEST(SoilGrid, PressYieldsToTheRimAndConservesVolume) {
 // A 10 cm column of sand slumps until no two neighbours differ by more than cell·tan(repose),
 // with every cubic millimetre accounted for.
 TEST(SoilGrid, SlopesRelaxToTheAngleOfRepose) {
-  SoilGrid grid(small_grid(), dry_sand(), flat);
-  grid.set_cell_surface_m(50, 30, 0.0);
   Footprint window;
   window.min_x = window.max_x = 50;
   window.min_y = window.max_y = 30;
