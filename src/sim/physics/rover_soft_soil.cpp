@@ -43,8 +43,8 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
         is_left_wheel(wheel) ? soil::BladeHandedness::kRight : soil::BladeHandedness::kLeft;
   }
   const double slope = terrain.kind == TerrainKind::kSlope ? std::tan(terrain.slope_rad) : 0.0;
-  soft_soil.emplace(*terrain.ground.soil, kSoilGrid,
-                    [slope](double x_m, double) { return x_m * slope; }, wheels);
+  soft_soil.emplace(
+      *terrain.ground.soil, kSoilGrid, [slope](double x_m, double) { return x_m * slope; }, wheels);
 }
 
 void RoverPhysics::Impl::apply_soft_soil() {
@@ -68,8 +68,9 @@ void RoverPhysics::Impl::apply_soft_soil() {
   for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
     const int body = ids.wheel_body[wheel];
     const soil::WheelWrench& wrench = wrenches[wheel];
-    const soil::Vec3 lever = wheels[wheel].center_m - soil::Vec3{d.xipos[3 * body], d.xipos[3 * body + 1],
-                                                                 d.xipos[3 * body + 2]};
+    const soil::Vec3 lever =
+        wheels[wheel].center_m -
+        soil::Vec3{d.xipos[3 * body], d.xipos[3 * body + 1], d.xipos[3 * body + 2]};
     const soil::Vec3 torque = wrench.torque_nm + soil::cross(lever, wrench.force_n);
     for (int k = 0; k < 3; ++k) {
       d.xfrc_applied[6 * body + k] = wrench.force_n[static_cast<std::size_t>(k)];

@@ -37,8 +37,8 @@ double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, con
                                 double radius_m, double sinkage_m) const {
   const double entry = std::acos(1.0 - std::clamp(sinkage_m, 0.0, radius_m) / radius_m);
   const auto height = [&](double theta) {  // of the rim above the soil
-    const Vec3 rim = axis_point + (radius_m * std::sin(theta)) * forward -
-                     (radius_m * std::cos(theta)) * up;
+    const Vec3 rim =
+        axis_point + (radius_m * std::sin(theta)) * forward - (radius_m * std::cos(theta)) * up;
     return rim[2] - grid_.surface_m(rim[0], rim[1]);
   };
   const double bottom = std::max(height(0.0), 0.0);
@@ -74,11 +74,12 @@ SoftSoil::LaneContacts SoftSoil::lane_contacts(std::size_t wheel,
     const double surface = grid_.surface_m(lowest[0], lowest[1]);
     const double undisturbed = grid_.undisturbed_m(lowest[0], lowest[1]);
     const double gap = std::max(lowest[2] - surface, 0.0);
-    const double depth = undisturbed - std::min(lowest[2], surface) -
-                         soil_.unloading_stiffness_ratio * gap;
+    const double depth =
+        undisturbed - std::min(lowest[2], surface) - soil_.unloading_stiffness_ratio * gap;
     result.sinkage_m[lane] = depth * normal[2];
     if (result.sinkage_m[lane] > 0.0) {
-      result.exit_rad[lane] = exit_angle_rad(axis_point, forward, up, radius, result.sinkage_m[lane]);
+      result.exit_rad[lane] =
+          exit_angle_rad(axis_point, forward, up, radius, result.sinkage_m[lane]);
     }
   }
   return result;
@@ -113,16 +114,14 @@ void SoftSoil::deform(std::size_t wheel, const WheelKinematics& kinematics,
     const Vec3 rolling = cross(kinematics.axle, normal);
     const Vec3 forward = (1.0 / std::max(norm(rolling), 1e-12)) * rolling;
     const double direction = contacts_[wheel].direction();
-    const double slip_speed =
-        direction * (geometry.shear_radius_m() * kinematics.spin_radps -
-                     dot(kinematics.velocity_mps, forward));
+    const double slip_speed = direction * (geometry.shear_radius_m() * kinematics.spin_radps -
+                                           dot(kinematics.velocity_mps, forward));
     const std::vector<double> sinkage = lane_contacts(wheel, kinematics).sinkage_m;
-    const double in_contact =
-        static_cast<double>(std::count_if(sinkage.begin(), sinkage.end(),
-                                          [](double z) { return z > 0.0; })) /
-        geometry.lanes;
-    const double volume = soil_.excavation_fraction * geometry.width_m *
-                          geometry.blade_height_m * std::max(slip_speed, 0.0) * dt_s * in_contact;
+    const double in_contact = static_cast<double>(std::count_if(sinkage.begin(), sinkage.end(),
+                                                                [](double z) { return z > 0.0; })) /
+                              geometry.lanes;
+    const double volume = soil_.excavation_fraction * geometry.width_m * geometry.blade_height_m *
+                          std::max(slip_speed, 0.0) * dt_s * in_contact;
     grid_.excavate(footprint, cylinder, direction * forward,
                    geometry.rim_radius_m + grid_.spec().cell_m, volume);
   }

@@ -123,11 +123,13 @@ double SoilGrid::rim_below_m(const Cylinder& wheel, double x_m, double y_m) cons
   const double ex = dx - along * ax, ey = dy - along * ay;
   const double across2 = ex * ex + ey * ey;
   if (across2 >= wheel.radius_m * wheel.radius_m) return kMiss;
-  return wheel.center_m[2] + along * wheel.axle[2] - std::sqrt(wheel.radius_m * wheel.radius_m - across2);
+  return wheel.center_m[2] + along * wheel.axle[2] -
+         std::sqrt(wheel.radius_m * wheel.radius_m - across2);
 }
 
 void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
-  const double depth = volume_m3 / (static_cast<double>(cells.size()) * spec_.cell_m * spec_.cell_m);
+  const double depth =
+      volume_m3 / (static_cast<double>(cells.size()) * spec_.cell_m * spec_.cell_m);
   for (int cell : cells) surface_[static_cast<std::size_t>(cell)] += depth;
   volumes_.fill_m3 += volume_m3;
 }

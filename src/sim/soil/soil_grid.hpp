@@ -57,7 +57,7 @@ struct Cylinder {
 
 // The cells a press touched, for excavation and relaxation to act on.
 struct Footprint {
-  std::vector<int> contact_cells;  // cell indices, ascending
+  std::vector<int> contact_cells;                    // cell indices, ascending
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // their box (empty: max < min)
 };
 
@@ -102,8 +102,8 @@ class SoilGrid {
   }
   double cell_x_m(int ix) const { return spec_.origin_x_m + (ix + 0.5) * spec_.cell_m; }
   double cell_y_m(int iy) const { return spec_.origin_y_m + (iy + 0.5) * spec_.cell_m; }
-  double bilinear(const std::vector<double>& field, const std::vector<double>* added,
-                  double x_m, double y_m) const;
+  double bilinear(const std::vector<double>& field, const std::vector<double>* added, double x_m,
+                  double y_m) const;
   double rim_below_m(const Cylinder& wheel, double x_m, double y_m) const;
   void spread(const std::vector<int>& cells, double volume_m3);
   void shrink_to_contact(Footprint& footprint) const;

@@ -11,8 +11,8 @@ namespace {
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
 // Rejects a value outside [min, max] (or NaN) with the owner, the name, the value and the range.
-void require_range(const std::string& owner, const char* name, double value, double min,
-                   double max, const char* unit) {
+void require_range(const std::string& owner, const char* name, double value, double min, double max,
+                   const char* unit) {
   if (std::isfinite(value) && value >= min && value <= max) return;
   std::ostringstream message;
   message << owner << ": " << name << " must be within [" << min << ", " << max << "] " << unit
@@ -43,8 +43,8 @@ void validate(const SoilParams& soil) {
   require_range(owner, "cohesion_pa (c)", soil.cohesion_pa, 0.0, 1e7, "Pa");
   require_range(owner, "friction_angle_rad (phi)", soil.friction_angle_rad, 0.0, 1.2, "rad");
   require_range(owner, "shear_modulus_m (K)", soil.shear_modulus_m, 1e-5, 1.0, "m");
-  require_range(owner, "soil_metal_friction_angle_rad (delta)",
-                soil.soil_metal_friction_angle_rad, 0.0, 1.2, "rad");
+  require_range(owner, "soil_metal_friction_angle_rad (delta)", soil.soil_metal_friction_angle_rad,
+                0.0, 1.2, "rad");
   require_range(owner, "max_stress_angle_c1", soil.max_stress_angle_c1, 0.0, 1.0, "");
   require_range(owner, "max_stress_angle_c2", soil.max_stress_angle_c2, 0.0, 1.0, "");
   require_range(owner, "bulk_density_kgpm3", soil.bulk_density_kgpm3, 1.0, 1e4, "kg/m^3");
@@ -52,8 +52,8 @@ void validate(const SoilParams& soil) {
   require_range(owner, "repose_angle_rad", soil.repose_angle_rad, 0.01, half_pi - 0.01, "rad");
   require_range(owner, "displaced_fraction", soil.displaced_fraction, 0.0, 1.0, "");
   require_range(owner, "excavation_fraction", soil.excavation_fraction, 0.0, 1.0, "");
-  require_range(owner, "vertical_damping_pa_s_per_m", soil.vertical_damping_pa_s_per_m, 0.0,
-                1e9, "Pa s/m");
+  require_range(owner, "vertical_damping_pa_s_per_m", soil.vertical_damping_pa_s_per_m, 0.0, 1e9,
+                "Pa s/m");
   require_range(owner, "unloading_stiffness_ratio", soil.unloading_stiffness_ratio, 1.0, 1e4, "");
 }
 

@@ -15,19 +15,19 @@ namespace marsokhod::sim::soil {
 
 struct SoilParams {
   std::string name = "sand";
-  double sinkage_exponent = 1.1;              // n0, Bekker's n at zero slip
-  double slip_sinkage_exponent = 0.0;         // n1: n = n0 + n1·|s| (Ding et al. 2011)
-  double cohesive_modulus = 0.99e3;           // k_c, N/m^(n+1)
-  double frictional_modulus = 1528.43e3;      // k_φ, N/m^(n+2)
-  double cohesion_pa = 1.04e3;                // c
-  double friction_angle_rad = 0.48869219;     // φ (28°)
-  double shear_modulus_m = 0.010;             // K, Janosi–Hanamoto shear deformation modulus
+  double sinkage_exponent = 1.1;           // n0, Bekker's n at zero slip
+  double slip_sinkage_exponent = 0.0;      // n1: n = n0 + n1·|s| (Ding et al. 2011)
+  double cohesive_modulus = 0.99e3;        // k_c, N/m^(n+1)
+  double frictional_modulus = 1528.43e3;   // k_φ, N/m^(n+2)
+  double cohesion_pa = 1.04e3;             // c
+  double friction_angle_rad = 0.48869219;  // φ (28°)
+  double shear_modulus_m = 0.010;          // K, Janosi–Hanamoto shear deformation modulus
   double soil_metal_friction_angle_rad = 0.26179939;  // δ, along a blade (15°)
-  double max_stress_angle_c1 = 0.4;           // θm = (c1 + c2·s)·θ1 (Wong–Reece)
+  double max_stress_angle_c1 = 0.4;                   // θm = (c1 + c2·s)·θ1 (Wong–Reece)
   double max_stress_angle_c2 = 0.15;
-  double bulk_density_kgpm3 = 1600.0;         // ρ, for the sidewall's passive earth pressure
+  double bulk_density_kgpm3 = 1600.0;  // ρ, for the sidewall's passive earth pressure
   double gravity_mps2 = 9.81;
-  double repose_angle_rad = 0.48869219;       // slopes of the grid relax to this angle
+  double repose_angle_rad = 0.48869219;  // slopes of the grid relax to this angle
   // Of the soil a wheel presses down, the share pushed aside to the patch's rim; the rest is
   // compacted in place (the grid's compaction counter).
   double displaced_fraction = 0.5;
@@ -51,10 +51,10 @@ void validate(const SoilParams& soil);
 // Locomotion Laboratory): n 1.1, k_c 0.99 kN/m^(n+1), k_φ 1528.43 kN/m^(n+2), c 1.04 kPa, φ 28°.
 // K: Wong's range for sand is 10–25 mm; we take 10 mm. At 25 mm the steady drawbar pull of a
 // Marsokhod wheel stays below 0.13 of its load at any slip (a 7° climb), at 10 mm it reaches 0.24
-// (13.5°); neither reaches [KG92]'s 20° by driving (docs/simulator.md). Not in the table, and said so in docs/simulator.md: δ = 15° (Potyondy 1961,
-// δ/φ ≈ 0.54 for dry sand on smooth steel), ρ = 1600 kg/m³, the angle of repose = φ, n1 = 0 (no
-// published slip sinkage for this sand), c1 = 0.4, c2 = 0.15 (Wong–Reece's θm, as used by
-// Ishigami et al. 2007).
+// (13.5°); neither reaches [KG92]'s 20° by driving (docs/simulator.md). Not in the table, and said
+// so in docs/simulator.md: δ = 15° (Potyondy 1961, δ/φ ≈ 0.54 for dry sand on smooth steel), ρ =
+// 1600 kg/m³, the angle of repose = φ, n1 = 0 (no published slip sinkage for this sand), c1 = 0.4,
+// c2 = 0.15 (Wong–Reece's θm, as used by Ishigami et al. 2007).
 SoilParams dry_sand();
 
 // Lunar soil as tabulated by Ding et al. (2015, J. Field Robotics 32(6), Table I, after Wong and

@@ -8,8 +8,12 @@ namespace marsokhod::sim::soil {
 
 using Vec3 = std::array<double, 3>;
 
-inline Vec3 operator+(const Vec3& u, const Vec3& v) { return {u[0] + v[0], u[1] + v[1], u[2] + v[2]}; }
-inline Vec3 operator-(const Vec3& u, const Vec3& v) { return {u[0] - v[0], u[1] - v[1], u[2] - v[2]}; }
+inline Vec3 operator+(const Vec3& u, const Vec3& v) {
+  return {u[0] + v[0], u[1] + v[1], u[2] + v[2]};
+}
+inline Vec3 operator-(const Vec3& u, const Vec3& v) {
+  return {u[0] - v[0], u[1] - v[1], u[2] - v[2]};
+}
 inline Vec3 operator*(double s, const Vec3& v) { return {s * v[0], s * v[1], s * v[2]}; }
 inline double dot(const Vec3& u, const Vec3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
 inline Vec3 cross(const Vec3& u, const Vec3& v) {

@@ -1,15 +1,16 @@
 #include "sim/soil/wheel_soil.hpp"
 
 #include <algorithm>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <sstream>
 #include <stdexcept>
 
 namespace marsokhod::sim::soil {
 namespace {
 
-// A reversal of the rolling direction slower than this keeps the current frame (no chatter at rest).
+// A reversal of the rolling direction slower than this keeps the current frame (no chatter at
+// rest).
 constexpr double kReversalSpeedMps = 1e-3;
 
 double mobilised(double displacement_m, double shear_modulus_m) {
@@ -82,10 +83,11 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
       // The slip rate at the middle of the path since the last step, at least half a sample
       // upstream: the linear interpolation's steady state then sums it by the midpoint rule.
       const double position = (k + 0.5) * spacing;
-      const double middle = std::max(position - std::max(shift, 1.0) * spacing / 2.0, position / 2.0);
+      const double middle =
+          std::max(position - std::max(shift, 1.0) * spacing / 2.0, position / 2.0);
       const double theta = arc.entry_rad - middle * span;
-      const double rate = field == &shear_t_ ? rs * spin_radps - travel_mps * std::cos(theta)
-                                             : -lateral_mps;
+      const double rate =
+          field == &shear_t_ ? rs * spin_radps - travel_mps * std::cos(theta) : -lateral_mps;
       j[k] = value + rate * dt_s;
     }
   }
@@ -119,7 +121,8 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
 void WheelSoilContact::add_damping(double contact_area_m2, const Frame& frame,
                                    const Vec3& velocity_mps, WheelWrench& wrench) const {
   const double normal = dot(wrench.force_n, frame.up);
-  double damping = -soil_.vertical_damping_pa_s_per_m * contact_area_m2 * dot(velocity_mps, frame.up);
+  double damping =
+      -soil_.vertical_damping_pa_s_per_m * contact_area_m2 * dot(velocity_mps, frame.up);
   damping = std::max(damping, -std::max(normal, 0.0));  // never sucks the wheel in
   wrench.force_n += damping * frame.up;
 }
@@ -131,12 +134,14 @@ void WheelSoilContact::add_sidewall(std::span<const double> lane_sinkage_m, cons
   const int samples = wheel_.arc_samples;
   for (int lane = 0; lane < wheel_.lanes; ++lane) {
     if (lane_sinkage_m[static_cast<std::size_t>(lane)] <= 0.0) continue;
-    for (int k = 0; k < samples; ++k) mean += shear_y_[static_cast<std::size_t>(lane * samples + k)];
+    for (int k = 0; k < samples; ++k)
+      mean += shear_y_[static_cast<std::size_t>(lane * samples + k)];
     count += samples;
   }
   if (count == 0) return;
   mean /= count;
-  // The face that moves into the soil: the wheel pulled toward −y (j_y > 0) pushes with its −y side.
+  // The face that moves into the soil: the wheel pulled toward −y (j_y > 0) pushes with its −y
+  // side.
   const int leading = mean > 0.0 ? 0 : wheel_.lanes - 1;
   const double sinkage = lane_sinkage_m[static_cast<std::size_t>(leading)];
   const double force = sidewall_resistance_n(soil_, wheel_.rim_radius_m, sinkage) *
@@ -199,9 +204,11 @@ WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3
     const ContactArc arc = contact_arc(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit);
     advect_lane(lane, arc, frame.spin_radps, frame.travel_mps, frame.lateral_mps, dt_s);
     add_lane_stresses(lane, arc, frame, wrench);
-    contact_area += (arc.entry_rad - arc.exit_rad) * wheel_.rim_radius_m * wheel_.width_m / wheel_.lanes;
+    contact_area +=
+        (arc.entry_rad - arc.exit_rad) * wheel_.rim_radius_m * wheel_.width_m / wheel_.lanes;
     wrench.sinkage_m = std::max(wrench.sinkage_m, std::min(sinkage, wheel_.rim_radius_m));
-    wrench.diagnostics.entry_angle_rad = std::max(wrench.diagnostics.entry_angle_rad, arc.entry_rad);
+    wrench.diagnostics.entry_angle_rad =
+        std::max(wrench.diagnostics.entry_angle_rad, arc.entry_rad);
     wrench.diagnostics.in_contact = true;
   }
   if (wrench.diagnostics.in_contact) {

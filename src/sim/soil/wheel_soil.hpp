@@ -1,6 +1,6 @@
-// One rigid bladed wheel in soil: the Wong–Reece stresses (wheel_stress.hpp) over a few lanes across
-// its width, with a shear-displacement state instead of the slip ratio, as a force and torque at
-// the wheel's centre in the world frame.
+// One rigid bladed wheel in soil: the Wong–Reece stresses (wheel_stress.hpp) over a few lanes
+// across its width, with a shear-displacement state instead of the slip ratio, as a force and
+// torque at the wheel's centre in the world frame.
 //
 // Shear displacement state. Per lane and arc sample, j = (j_t, j_y): how far the blade tips have
 // slid against the soil they touch, signed as the soil's pull on the wheel. Each step
@@ -14,9 +14,9 @@
 // slope is held like a spring of stiffness ≈ (c + σ tan φ)/K per unit area, and a locked wheel
 // being dragged is regular.
 //
-// Direction: the arc's entry lies ahead of the wheel in the direction of r_s ω + v_x; when that changes
-// sign (beyond 1 mm/s) the motion frame mirrors (x → −x, the state mirrored along the arc and j_t
-// negated, the blades' handedness flipped with it).
+// Direction: the arc's entry lies ahead of the wheel in the direction of r_s ω + v_x; when that
+// changes sign (beyond 1 mm/s) the motion frame mirrors (x → −x, the state mirrored along the arc
+// and j_t negated, the blades' handedness flipped with it).
 //
 // Damping: over the contact's area A = Σ_lanes Δb·r·(θ1 − θ2), a force −R·A·v_up along the wheel's
 // up (SoilParams::vertical_damping_pa_s_per_m), never pulling the wheel down into the soil beyond
@@ -38,25 +38,25 @@ namespace marsokhod::sim::soil {
 // The wheel as the physics engine sees it, in the world frame.
 struct WheelKinematics {
   Vec3 center_m{};
-  Vec3 axle{0.0, 1.0, 0.0};   // unit, toward the rover's left for every wheel
-  Vec3 velocity_mps{};        // of the wheel's centre
-  double spin_radps = 0.0;    // about axle; > 0 rolls the wheel along axle × ground normal
+  Vec3 axle{0.0, 1.0, 0.0};  // unit, toward the rover's left for every wheel
+  Vec3 velocity_mps{};       // of the wheel's centre
+  double spin_radps = 0.0;   // about axle; > 0 rolls the wheel along axle × ground normal
 };
 
 struct WheelDiagnostics {
   bool in_contact = false;
-  double slip = 0.0;                // regularised slip (wheel_stress.hpp), sign of the wheel's frame
-  double entry_angle_rad = 0.0;     // largest θ1 over the lanes
-  double normal_load_n = 0.0;       // force along the ground normal
-  double drawbar_pull_n = 0.0;      // force along axle × ground normal
-  double lateral_n = 0.0;           // force along the axle
-  double resisting_torque_nm = 0.0; // torque about the axle (opposes a driving wheel: < 0)
-  double sidewall_n = 0.0;          // the bulldozing part of lateral_n
+  double slip = 0.0;             // regularised slip (wheel_stress.hpp), sign of the wheel's frame
+  double entry_angle_rad = 0.0;  // largest θ1 over the lanes
+  double normal_load_n = 0.0;    // force along the ground normal
+  double drawbar_pull_n = 0.0;   // force along axle × ground normal
+  double lateral_n = 0.0;        // force along the axle
+  double resisting_torque_nm = 0.0;  // torque about the axle (opposes a driving wheel: < 0)
+  double sidewall_n = 0.0;           // the bulldozing part of lateral_n
 };
 
 struct WheelWrench {
-  Vec3 force_n{};    // on the wheel, world frame
-  Vec3 torque_nm{};  // about the wheel's centre, world frame
+  Vec3 force_n{};          // on the wheel, world frame
+  Vec3 torque_nm{};        // about the wheel's centre, world frame
   double sinkage_m = 0.0;  // the deepest lane's
   WheelDiagnostics diagnostics;
 };

@@ -23,15 +23,15 @@ double regularised_slip(double rim_speed_mps, double travel_speed_mps) {
   return std::clamp((rim_speed_mps - travel_speed_mps) / scale, -1.0, 1.0);
 }
 
-ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinkage_m,
-                       double slip, double exit_rad) {
+ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinkage_m, double slip,
+                       double exit_rad) {
   ContactArc arc;
   const double sinkage = std::clamp(sinkage_m, 0.0, rim_radius_m);
   arc.cos_entry = 1.0 - sinkage / rim_radius_m;
   arc.entry_rad = std::acos(arc.cos_entry);
   arc.exit_rad = std::clamp(exit_rad, -arc.entry_rad, 0.0);
-  const double ratio = std::clamp(soil.max_stress_angle_c1 + soil.max_stress_angle_c2 * slip,
-                                  0.0, 1.0);
+  const double ratio =
+      std::clamp(soil.max_stress_angle_c1 + soil.max_stress_angle_c2 * slip, 0.0, 1.0);
   arc.max_stress_rad = ratio * (arc.entry_rad + arc.exit_rad);
   arc.sinkage_exponent = soil.sinkage_exponent + soil.slip_sinkage_exponent * std::abs(slip);
   return arc;
@@ -82,8 +82,8 @@ SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel
   const double h = handedness < 0 ? -1.0 : 1.0;
   const double sin_i = std::sin(wheel.blade_inclination_rad);
   const double cos_i = std::cos(wheel.blade_inclination_rad);
-  const double along_t = h * sin_i, along_y = cos_i;      // b, along the blade
-  const double across_t = cos_i, across_y = -h * sin_i;   // n_b, across it
+  const double along_t = h * sin_i, along_y = cos_i;     // b, along the blade
+  const double across_t = cos_i, across_y = -h * sin_i;  // n_b, across it
   const double across = soil_strength * mobilised(jt * across_t + jy * across_y, K);
   const double along =
       normal_pa * strength.tan_metal_friction * mobilised(jt * along_t + jy * along_y, K);
@@ -122,8 +122,10 @@ PlanarForces steady_wheel_forces(const SoilParams& soil, const WheelGeometry& wh
     const double j = steady_shear_displacement_m(arc, rs, slip, theta);
     const SurfaceShear tau = rim_shear(strength, wheel, handedness, sigma, j, 0.0);
     const double area = step * b;
-    forces.drawbar_pull_n += (tau.tangential_pa * rs * std::cos(theta) - sigma * r * std::sin(theta)) * area;
-    forces.vertical_load_n += (sigma * r * std::cos(theta) + tau.tangential_pa * rs * std::sin(theta)) * area;
+    forces.drawbar_pull_n +=
+        (tau.tangential_pa * rs * std::cos(theta) - sigma * r * std::sin(theta)) * area;
+    forces.vertical_load_n +=
+        (sigma * r * std::cos(theta) + tau.tangential_pa * rs * std::sin(theta)) * area;
     forces.lateral_n += tau.lateral_pa * rs * area;
     forces.driving_torque_nm += tau.tangential_pa * rs * rs * area;
   }
@@ -158,7 +160,8 @@ double equilibrium_sinkage_m(const SoilParams& soil, const WheelGeometry& wheel,
 double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double sinkage_m) {
   const double z = std::clamp(sinkage_m, 0.0, rim_radius_m);
   if (z <= 0.0) return 0.0;
-  const double passive = std::pow(std::tan(std::numbers::pi / 4.0 + soil.friction_angle_rad / 2.0), 2);
+  const double passive =
+      std::pow(std::tan(std::numbers::pi / 4.0 + soil.friction_angle_rad / 2.0), 2);
   const double weight_density = soil.bulk_density_kgpm3 * soil.gravity_mps2;
   constexpr int kSamples = 16;
   const double step = z / kSamples;
@@ -166,10 +169,10 @@ double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double
   for (int k = 0; k < kSamples; ++k) {
     const double depth = (k + 0.5) * step;  // below the surface
     const double from_center = rim_radius_m - z + depth;
-    const double chord = 2.0 * std::sqrt(std::max(rim_radius_m * rim_radius_m -
-                                                      from_center * from_center, 0.0));
-    const double pressure = weight_density * depth * passive +
-                            2.0 * soil.cohesion_pa * std::sqrt(passive);
+    const double chord =
+        2.0 * std::sqrt(std::max(rim_radius_m * rim_radius_m - from_center * from_center, 0.0));
+    const double pressure =
+        weight_density * depth * passive + 2.0 * soil.cohesion_pa * std::sqrt(passive);
     force += pressure * chord * step;
   }
   return force;

@@ -87,10 +87,10 @@ double steady_shear_displacement_m(const ContactArc& arc, double shear_radius_m,
 // Sums of a wheel at steady slip s (no lateral slip), integrated by the midpoint rule over
 // wheel.arc_samples samples of the arc, in the motion frame.
 struct PlanarForces {
-  double drawbar_pull_n = 0.0;    // F_x
-  double vertical_load_n = 0.0;   // F_z, the load the soil carries
-  double lateral_n = 0.0;         // F_y (from inclined blades)
-  double driving_torque_nm = 0.0; // the torque the soil resists the wheel's turning with
+  double drawbar_pull_n = 0.0;     // F_x
+  double vertical_load_n = 0.0;    // F_z, the load the soil carries
+  double lateral_n = 0.0;          // F_y (from inclined blades)
+  double driving_torque_nm = 0.0;  // the torque the soil resists the wheel's turning with
 };
 PlanarForces steady_wheel_forces(const SoilParams& soil, const WheelGeometry& wheel,
                                  double sinkage_m, double slip);

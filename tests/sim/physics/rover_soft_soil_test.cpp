@@ -37,8 +37,9 @@ TEST(RoverSoftSoil, StandsOnSoftSandAndSinksIn) {
     EXPECT_GT(rim_depth, 0.01) << kMotorNames[wheel];
     EXPECT_LT(rim_depth, 0.03) << kMotorNames[wheel];
   }
-  EXPECT_LT(std::hypot(end.position_m[0] - start.position_m[0], end.position_m[1] - start.position_m[1]),
-            0.002);
+  EXPECT_LT(
+      std::hypot(end.position_m[0] - start.position_m[0], end.position_m[1] - start.position_m[1]),
+      0.002);
   EXPECT_LT(std::abs(end.position_m[2] - start.position_m[2]), 0.002);
   for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) EXPECT_TRUE(end.wheel_contact[wheel]);
 }
@@ -55,7 +56,8 @@ TEST(RoverSoftSoil, DrivesForwardWithSlip) {
     mean_slip_mps = 0.0;
     for (int i = 0; i < 1000; ++i) {
       physics.step();
-      for (double slip : physics.truth().wheel_slip_mps) mean_slip_mps += slip / (1000.0 * kWheelCount);
+      for (double slip : physics.truth().wheel_slip_mps)
+        mean_slip_mps += slip / (1000.0 * kWheelCount);
     }
     expect_healthy(physics);
     lateral_m = physics.truth().position_m[1];

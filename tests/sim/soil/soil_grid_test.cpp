@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <numbers>
 
@@ -85,8 +85,10 @@ TEST(SoilGrid, SlopesRelaxToTheAngleOfRepose) {
   const double limit = kCellM * std::tan(dry_sand().repose_angle_rad);
   for (int iy = 10; iy < 50; ++iy) {
     for (int ix = 30; ix < 70; ++ix) {
-      EXPECT_LE(std::abs(piled.cell_surface_m(ix + 1, iy) - piled.cell_surface_m(ix, iy)), limit + 1e-9);
-      EXPECT_LE(std::abs(piled.cell_surface_m(ix, iy + 1) - piled.cell_surface_m(ix, iy)), limit + 1e-9);
+      EXPECT_LE(std::abs(piled.cell_surface_m(ix + 1, iy) - piled.cell_surface_m(ix, iy)),
+                limit + 1e-9);
+      EXPECT_LE(std::abs(piled.cell_surface_m(ix, iy + 1) - piled.cell_surface_m(ix, iy)),
+                limit + 1e-9);
     }
   }
   EXPECT_NEAR(net_volume_m3(piled), before, 1e-15);
@@ -126,7 +128,9 @@ TEST(SoilGrid, SamePressesGiveIdenticalBits) {
     SoilGrid grid(small_grid(), dry_sand(), flat);
     for (int i = 0; i < 200; ++i) {
       const Cylinder wheel{{-0.2 + 0.002 * i, 0.01 * std::sin(i * 0.1), 0.1 - 0.0001 * i},
-                           {0.0, 1.0, 0.0}, 0.115, 0.15};
+                           {0.0, 1.0, 0.0},
+                           0.115,
+                           0.15};
       const Footprint footprint = grid.press(wheel);
       grid.excavate(footprint, wheel, {1.0, 0.0, 0.0}, 0.125, 1e-7);
       grid.relax(footprint, 3, 4);
@@ -151,7 +155,9 @@ TEST(SoilGrid, RejectsBadSpecs) {
   test_support::expect_invalid_argument([&] { SoilGrid grid(spec, dry_sand(), flat); },
                                         {"cells_x", "got 1"});
   test_support::expect_invalid_argument(
-      [&] { SoilGrid grid(small_grid(), dry_sand(), [](double, double) { return test_support::kNaN; }); },
+      [&] {
+        SoilGrid grid(small_grid(), dry_sand(), [](double, double) { return test_support::kNaN; });
+      },
       {"initial surface", "finite"});
 }
 

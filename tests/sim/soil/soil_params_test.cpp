@@ -55,10 +55,12 @@ TEST(SoilParams, RejectsBadSoilWithTheParameterAndItsRange) {
   expect_rejected([](SoilParams& s) { s.sinkage_exponent = test_support::kNaN; },
                   {"soil 'sand'", "sinkage_exponent", "nan"});
   expect_rejected([](SoilParams& s) { s.frictional_modulus = -1.0; }, {"k_phi", "-1"});
-  expect_rejected([](SoilParams& s) {
-    s.frictional_modulus = 0.0;
-    s.cohesive_modulus = 0.0;
-  }, {"carry no load"});
+  expect_rejected(
+      [](SoilParams& s) {
+        s.frictional_modulus = 0.0;
+        s.cohesive_modulus = 0.0;
+      },
+      {"carry no load"});
   expect_rejected([](SoilParams& s) { s.shear_modulus_m = 0.0; }, {"shear_modulus_m (K)"});
   expect_rejected([](SoilParams& s) { s.friction_angle_rad = 2.0; }, {"friction_angle_rad"});
   expect_rejected([](SoilParams& s) { s.repose_angle_rad = 1.6; }, {"repose_angle_rad"});

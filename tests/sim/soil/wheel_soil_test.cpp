@@ -17,10 +17,11 @@ constexpr double kDt = 0.001;
 const Vec3 kUp{0.0, 0.0, 1.0};
 
 reference::Soil reference_soil(const SoilParams& soil) {
-  return {soil.sinkage_exponent, soil.slip_sinkage_exponent, soil.cohesive_modulus,
-          soil.frictional_modulus, soil.cohesion_pa, soil.friction_angle_rad,
-          soil.shear_modulus_m, soil.soil_metal_friction_angle_rad, soil.max_stress_angle_c1,
-          soil.max_stress_angle_c2};
+  return {soil.sinkage_exponent,    soil.slip_sinkage_exponent,
+          soil.cohesive_modulus,    soil.frictional_modulus,
+          soil.cohesion_pa,         soil.friction_angle_rad,
+          soil.shear_modulus_m,     soil.soil_metal_friction_angle_rad,
+          soil.max_stress_angle_c1, soil.max_stress_angle_c2};
 }
 
 // A single-wheel rig: the wheel at a fixed sinkage, turning at spin_radps and carried along x at
@@ -28,12 +29,14 @@ reference::Soil reference_soil(const SoilParams& soil) {
 WheelWrench run_rig(WheelSoilContact& contact, double sinkage_m, double spin_radps, double slip,
                     double duration_s) {
   const double rs = contact.wheel().shear_radius_m();
-  const double speed = slip >= 0.0 ? rs * spin_radps * (1.0 - slip) : rs * spin_radps / (1.0 + slip);
+  const double speed =
+      slip >= 0.0 ? rs * spin_radps * (1.0 - slip) : rs * spin_radps / (1.0 + slip);
   const std::vector<double> lanes(static_cast<std::size_t>(contact.wheel().lanes), sinkage_m);
   WheelWrench wrench;
   const int steps = static_cast<int>(std::lround(duration_s / kDt));
   for (int i = 0; i < steps; ++i) {
-    const WheelKinematics kinematics{{0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {speed, 0.0, 0.0}, spin_radps};
+    const WheelKinematics kinematics{
+        {0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {speed, 0.0, 0.0}, spin_radps};
     wrench = contact.step(kinematics, kUp, lanes, kDt);
   }
   return wrench;
@@ -46,15 +49,16 @@ TEST(WheelSoil, SteadyRollingReachesWongReeceAcrossSlip) {
   const SoilParams soil = dry_sand();
   WheelGeometry wheel;
   wheel.bladed = false;
-  reference::Wheel reference_wheel{wheel.rim_radius_m, wheel.shear_radius_m(), wheel.width_m,
-                                   0.0, 1, false};
+  reference::Wheel reference_wheel{
+      wheel.rim_radius_m, wheel.shear_radius_m(), wheel.width_m, 0.0, 1, false};
   for (int step = 0; step <= 10; ++step) {
     const double slip = -0.2 + 0.1 * step;
     const reference::Result expected =
         reference::at_load(reference_soil(soil), reference_wheel, kWheelLoadN, slip);
     WheelSoilContact contact(soil, wheel);
     const WheelWrench wrench = run_rig(contact, expected.sinkage_m, 2.0, slip, 1.0);
-    EXPECT_NEAR(wrench.diagnostics.normal_load_n / expected.weight_n, 1.0, 0.002) << "slip " << slip;
+    EXPECT_NEAR(wrench.diagnostics.normal_load_n / expected.weight_n, 1.0, 0.002)
+        << "slip " << slip;
     EXPECT_NEAR(wrench.diagnostics.drawbar_pull_n / expected.weight_n,
                 expected.drawbar_pull_n / expected.weight_n, 0.002)
         << "slip " << slip;
@@ -97,7 +101,8 @@ TEST(WheelSoil, SidewaysDriftIsResistedByShearAndSidewall) {
     const std::vector<double> lanes(3, sinkage);
     WheelWrench wrench;
     for (int i = 0; i < 500; ++i) {
-      wrench = contact.step({{0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {0.2, 0.05, 0.0}, 1.6}, kUp, lanes, kDt);
+      wrench =
+          contact.step({{0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {0.2, 0.05, 0.0}, 1.6}, kUp, lanes, kDt);
     }
     EXPECT_LT(wrench.diagnostics.lateral_n, previous) << "sinkage " << sinkage;
     EXPECT_LT(wrench.diagnostics.sidewall_n, 0.0);
@@ -154,7 +159,8 @@ TEST(WheelSoil, RegularAtLowSpeed) {
       crawling.step({{0, 0, 0.3}, {0, 1, 0}, {1e-12, -1e-12, 0}, 1e-12}, kUp, lanes, kDt);
   for (int k = 0; k < 3; ++k) {
     EXPECT_TRUE(std::isfinite(crawl.force_n[static_cast<std::size_t>(k)]));
-    EXPECT_NEAR(crawl.force_n[static_cast<std::size_t>(k)], rest.force_n[static_cast<std::size_t>(k)], 1e-6);
+    EXPECT_NEAR(crawl.force_n[static_cast<std::size_t>(k)],
+                rest.force_n[static_cast<std::size_t>(k)], 1e-6);
   }
   EXPECT_GT(rest.diagnostics.normal_load_n, 0.0);
 }
@@ -200,10 +206,13 @@ TEST(WheelSoil, SameInputsGiveIdenticalBits) {
     std::vector<double> trace;
     for (int i = 0; i < 2000; ++i) {
       const double t = i * kDt;
-      const std::vector<double> lanes{0.02 + 0.005 * std::sin(t), 0.022, 0.018 + 0.004 * std::cos(3 * t)};
-      const WheelWrench w = contact.step(
-          {{0, 0, 0.3}, {0, 1, 0}, {0.1 * std::sin(2 * t), 0.02 * std::cos(t), 0}, 2.0 * std::cos(t)},
-          kUp, lanes, kDt);
+      const std::vector<double> lanes{0.02 + 0.005 * std::sin(t), 0.022,
+                                      0.018 + 0.004 * std::cos(3 * t)};
+      const WheelWrench w = contact.step({{0, 0, 0.3},
+                                          {0, 1, 0},
+                                          {0.1 * std::sin(2 * t), 0.02 * std::cos(t), 0},
+                                          2.0 * std::cos(t)},
+                                         kUp, lanes, kDt);
       trace.insert(trace.end(), w.force_n.begin(), w.force_n.end());
       trace.insert(trace.end(), w.torque_nm.begin(), w.torque_nm.end());
     }
@@ -217,12 +226,11 @@ TEST(WheelSoil, SameInputsGiveIdenticalBits) {
 TEST(WheelSoil, RejectsBadInput) {
   WheelSoilContact contact(dry_sand(), WheelGeometry{});
   const std::vector<double> two(2, 0.01), three(3, 0.01);
-  test_support::expect_invalid_argument(
-      [&] { contact.step({}, kUp, two, kDt); }, {"expected 3 lane sinkages", "got 2"});
-  test_support::expect_invalid_argument(
-      [&] { contact.step({}, kUp, three, two, kDt); }, {"as many exit angles", "got 3, 2"});
-  test_support::expect_invalid_argument(
-      [&] { contact.step({}, kUp, three, -1.0); }, {"dt_s >= 0"});
+  test_support::expect_invalid_argument([&] { contact.step({}, kUp, two, kDt); },
+                                        {"expected 3 lane sinkages", "got 2"});
+  test_support::expect_invalid_argument([&] { contact.step({}, kUp, three, two, kDt); },
+                                        {"as many exit angles", "got 3, 2"});
+  test_support::expect_invalid_argument([&] { contact.step({}, kUp, three, -1.0); }, {"dt_s >= 0"});
   SoilParams soil = dry_sand();
   soil.shear_modulus_m = -1.0;
   test_support::expect_invalid_argument([&] { WheelSoilContact bad(soil, WheelGeometry{}); },

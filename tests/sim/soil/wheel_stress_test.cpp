@@ -15,15 +15,20 @@ namespace {
 constexpr double kWheelLoadN = 82.0 * 9.81 / 6.0;
 
 reference::Soil reference_soil(const SoilParams& soil) {
-  return {soil.sinkage_exponent, soil.slip_sinkage_exponent, soil.cohesive_modulus,
-          soil.frictional_modulus, soil.cohesion_pa, soil.friction_angle_rad,
-          soil.shear_modulus_m, soil.soil_metal_friction_angle_rad, soil.max_stress_angle_c1,
-          soil.max_stress_angle_c2};
+  return {soil.sinkage_exponent,    soil.slip_sinkage_exponent,
+          soil.cohesive_modulus,    soil.frictional_modulus,
+          soil.cohesion_pa,         soil.friction_angle_rad,
+          soil.shear_modulus_m,     soil.soil_metal_friction_angle_rad,
+          soil.max_stress_angle_c1, soil.max_stress_angle_c2};
 }
 
 reference::Wheel reference_wheel(const WheelGeometry& wheel) {
-  return {wheel.rim_radius_m, wheel.shear_radius_m(), wheel.width_m, wheel.blade_inclination_rad,
-          static_cast<int>(wheel.handedness), wheel.bladed};
+  return {wheel.rim_radius_m,
+          wheel.shear_radius_m(),
+          wheel.width_m,
+          wheel.blade_inclination_rad,
+          static_cast<int>(wheel.handedness),
+          wheel.bladed};
 }
 
 // Bekker's towed rigid wheel: the normal stress is the plate's pressure k z^n along the front arc
@@ -42,8 +47,9 @@ TEST(WheelStress, StaticSinkageMatchesBekkersClosedForm) {
   const double n = soil.sinkage_exponent, b = wheel.width_m;
   for (double load : {0.5 * kWheelLoadN, kWheelLoadN, 2.0 * kWheelLoadN}) {
     const double bekker =
-        std::pow(3.0 * load / ((3.0 - n) * (soil.cohesive_modulus + b * soil.frictional_modulus) *
-                               std::sqrt(2.0 * wheel.rim_radius_m)),
+        std::pow(3.0 * load /
+                     ((3.0 - n) * (soil.cohesive_modulus + b * soil.frictional_modulus) *
+                      std::sqrt(2.0 * wheel.rim_radius_m)),
                  2.0 / (2.0 * n + 1.0));
     const double sinkage = equilibrium_sinkage_m(soil, wheel, load, 0.0);
     EXPECT_NEAR(sinkage / bekker, 1.0, 0.015) << "load " << load << " N";
@@ -51,8 +57,9 @@ TEST(WheelStress, StaticSinkageMatchesBekkersClosedForm) {
   // n = 1 removes the (3 − n)/3 approximation: only the parabola is left, 1 % at a light load.
   soil.sinkage_exponent = 1.0;
   const double load = 0.5 * kWheelLoadN;
-  const double bekker = std::pow(3.0 * load / (2.0 * (soil.cohesive_modulus + b * soil.frictional_modulus) *
-                                               std::sqrt(2.0 * wheel.rim_radius_m)),
+  const double bekker = std::pow(3.0 * load /
+                                     (2.0 * (soil.cohesive_modulus + b * soil.frictional_modulus) *
+                                      std::sqrt(2.0 * wheel.rim_radius_m)),
                                  2.0 / 3.0);
   EXPECT_NEAR(equilibrium_sinkage_m(soil, wheel, load, 0.0) / bekker, 1.0, 0.01);
 }
@@ -158,10 +165,12 @@ TEST(WheelStress, SidewallIsRankinesPassivePressureOnTheSegment) {
   // Cohesion only: 2c√N_φ times the segment's area.
   soil.bulk_density_kgpm3 = 1.0;
   soil.gravity_mps2 = 0.0;
-  const double r = 0.115, z = 0.03, passive = std::pow(std::tan(std::numbers::pi / 4 + soil.friction_angle_rad / 2), 2);
+  const double r = 0.115, z = 0.03,
+               passive = std::pow(std::tan(std::numbers::pi / 4 + soil.friction_angle_rad / 2), 2);
   const double half_angle = std::acos((r - z) / r);
   const double segment = r * r * (half_angle - std::sin(half_angle) * std::cos(half_angle));
-  EXPECT_NEAR(sidewall_resistance_n(soil, r, z), 2.0 * soil.cohesion_pa * std::sqrt(passive) * segment,
+  EXPECT_NEAR(sidewall_resistance_n(soil, r, z),
+              2.0 * soil.cohesion_pa * std::sqrt(passive) * segment,
               0.01 * 2.0 * soil.cohesion_pa * std::sqrt(passive) * segment);
 }
 

@@ -4,7 +4,8 @@
 //   σ(θ) = (k_c/b + k_φ) r^n (cos θ* − cos θ1)^n,  n = n0 + n1|s|,  θm = (c1 + c2 s) θ1
 //   j(θ) = r_s (θ1 − θ) − (v/ω)(sin θ1 − sin θ),    v/ω = r_s(1 − s) (s ≥ 0), r_s/(1 + s) (s < 0)
 //   blades (inclination i, handedness h): j_n = j cos i, j_b = j h sin i,
-//     τ_t = (c + σ tan φ)(1 − e^(−|j_n|/K)) sgn(j_n) cos i + σ tan δ (1 − e^(−|j_b|/K)) sgn(j_b) h sin i
+//     τ_t = (c + σ tan φ)(1 − e^(−|j_n|/K)) sgn(j_n) cos i + σ tan δ (1 − e^(−|j_b|/K)) sgn(j_b) h
+//     sin i
 //   W  = b ∫ (σ r cos θ + τ_t r_s sin θ) dθ,   DP = b ∫ (τ_t r_s cos θ − σ r sin θ) dθ
 #pragma once
 
@@ -47,7 +48,8 @@ inline void integrands(const Soil& soil, const Wheel& w, double z, double s, dou
     const double jb = j * w.handedness * std::sin(w.inclination);
     const double across =
         (soil.c + sigma * std::tan(soil.phi)) * (1.0 - std::exp(-std::fabs(jn) / soil.K)) * sgn(jn);
-    const double along = sigma * std::tan(soil.delta) * (1.0 - std::exp(-std::fabs(jb) / soil.K)) * sgn(jb);
+    const double along =
+        sigma * std::tan(soil.delta) * (1.0 - std::exp(-std::fabs(jb) / soil.K)) * sgn(jb);
     tau = across * std::cos(w.inclination) + along * w.handedness * std::sin(w.inclination);
   }
   vertical = w.b * (sigma * w.r * std::cos(theta) + tau * w.rs * std::sin(theta));
