@@ -38,9 +38,11 @@ void write_header(XmlWriter& xml, const Params& params, const TerrainSpec& terra
            {{"nconmax", std::to_string(contacts)}, {"njmax", std::to_string(contacts * 6 + 64)}});
   xml.open("default");
   // The rover's own geoms: near-zero friction so that the terrain's material decides (MuJoCo
-  // takes the larger coefficient of a pair).
+  // takes the larger coefficient of a pair). Contact bits: terrain geoms have conaffinity 1, a
+  // soft-soil ground plane 2; the chassis (contype 3) meets both, a wheel (contype 1) only the
+  // rigid ones — on soft soil the soil model carries it.
   xml.open("default", {{"class", kRoverGeomClass}});
-  xml.leaf("geom", {{"contype", "1"},
+  xml.leaf("geom", {{"contype", "3"},
                     {"conaffinity", "0"},
                     {"group", std::to_string(kRoverGeomGroup)},
                     {"friction", "0.001 0 0"},
@@ -62,6 +64,7 @@ void write_wheel(XmlWriter& xml, std::size_t wheel, double lateral_m, double rad
   xml.leaf("geom", {{"name", name},
                     {"class", kRoverGeomClass},
                     {"type", "cylinder"},
+                    {"contype", "1"},
                     {"size", xml_numbers(std::array<double, 2>{radius_m, kWheelWidthM / 2})},
                     {"zaxis", "0 1 0"},
                     {"mass", xml_number(kWheelMassKg)}});

@@ -76,6 +76,7 @@ RoverPhysics::Impl::Impl(const Params& params_in, const TerrainSpec& terrain, do
   start_joints();
   place_on_terrain(terrain);
   resolve_terrain_materials(terrain);
+  build_soft_soil(terrain);
   mj_forward(model.get(), data.get());
 }
 
@@ -293,6 +294,7 @@ void RoverPhysics::step() {
   impl_->move_axle_hands();
   impl_->pin_axles_to_hands();
   impl_->apply_skid_sinkage();
+  impl_->apply_soft_soil();
   mj_step(impl_->model.get(), impl_->data.get());
   impl_->pin_axles_to_hands();
 }

@@ -9,6 +9,7 @@
 #include "sim/physics/joint_drive.hpp"
 #include "sim/physics/mujoco_model.hpp"
 #include "sim/physics/rover_physics.hpp"
+#include "sim/soil/soft_soil.hpp"
 
 namespace marsokhod::sim {
 
@@ -40,6 +41,8 @@ struct RoverPhysics::Impl {
   void apply_joint_lock_brake(std::size_t slot, double no_load_speed_radps);
   void resolve_terrain_materials(const TerrainSpec& terrain);
   void apply_skid_sinkage();
+  void build_soft_soil(const TerrainSpec& terrain);
+  void apply_soft_soil();
 
   Params params;
   ModelPtr model;
@@ -62,6 +65,9 @@ struct RoverPhysics::Impl {
   std::array<double, 2> axle_hand_rad{}, axle_hand_speed_radps{};
   void move_axle_hands();
   void pin_axles_to_hands();
+  // Soft soil under the wheels (rover_soft_soil.cpp), when the ground's material has one.
+  std::optional<soil::SoftSoil> soft_soil;
+  std::array<soil::WheelWrench, kWheelCount> soil_wrenches{};  // the last step's
 };
 
 }  // namespace marsokhod::sim

@@ -135,7 +135,8 @@ GroundTruth RoverPhysics::truth() const {
   const auto contacts = wheel_contacts(data, ids);
   for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
     const int body = ids.wheel_body[wheel];
-    truth.wheel_contact[wheel] = contacts[wheel].touching;
+    truth.wheel_contact[wheel] =
+        contacts[wheel].touching || impl_->soil_wrenches[wheel].diagnostics.in_contact;
     truth.wheel_slip_mps[wheel] = wheel_slip_mps(model, data, body, contacts[wheel].ground_normal,
                                                  impl_->params.geometry.wheel_radius_m);
     truth.wheel_position_m[wheel] = {data.xpos[3 * body], data.xpos[3 * body + 1],

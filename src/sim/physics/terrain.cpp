@@ -123,9 +123,11 @@ Material material_from(const toml::node* node, TableReader& owner, const Materia
   if (const std::optional<std::string> name = node->value<std::string>()) {
     if (*name == "hard") return hard_ground();
     if (*name == "sand") return sand();
+    if (*name == "soft-sand") return soft_sand();
+    if (*name == "lunar-soil") return soft_lunar_soil();
     owner.fail("material",
                "= \"" + *name +
-                   "\" is unknown; use \"hard\", \"sand\" or a table "
+                   "\" is unknown; use \"hard\", \"sand\", \"soft-sand\", \"lunar-soil\" or a table "
                    "{ friction = …, rolling_friction_m = … }",
                node);
   }
@@ -253,6 +255,18 @@ Material hard_ground() { return Material{0.9, 0.0, 0.0, 0.0}; }
 
 Material sand() { return Material{0.5, 0.0, 0.02, 2.0}; }
 
+Material soft_sand() {
+  Material material{0.5, 0.0, 0.0, 0.0};
+  material.soil = soil::dry_sand();
+  return material;
+}
+
+Material soft_lunar_soil() {
+  Material material{0.5, 0.0, 0.0, 0.0};
+  material.soil = soil::lunar_soil();
+  return material;
+}
+
 std::string to_string(TerrainKind kind) {
   switch (kind) {
     case TerrainKind::kFlat:
@@ -281,6 +295,11 @@ void validate(const TerrainSpec& terrain) {
     validate_obstacle(terrain.obstacles[i], "obstacle " + std::to_string(i));
   }
   if (terrain.kind == TerrainKind::kHeightfield) validate_heightfield(terrain.heightfield);
+  if (terrain.ground.soil) {
+    require(terrain.kind != TerrainKind::kHeightfield,
+            "soft soil (soft-sand, lunar-soil) needs flat or sloped ground, not a heightfield");
+    soil::validate(*terrain.ground.soil);
+  }
 }
 
 TerrainSpec terrain_from_toml(const toml::table& terrain_table,

@@ -9,10 +9,12 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sim/physics/pgm_image.hpp"
+#include "sim/soil/soil_params.hpp"
 
 namespace marsokhod::sim {
 
@@ -38,6 +40,10 @@ struct Material {
   double torsional_friction_m = 0.0;  // resistance to spinning about the contact normal
   double rolling_friction_m = 0.0;    // rolling resistance (see above); > 0 selects condim 6
   double skid_sinkage = 0.0;          // extra friction of a skidding wheel (see above)
+  // Soft soil (sim/soil): the wheels do not touch this ground in MuJoCo; the soil model's forces
+  // act on them instead (rover_soft_soil.cpp). The chassis still meets it with the friction above.
+  // Ground of kind flat, slope or obstacles only; an obstacle ignores it (obstacles are rigid).
+  std::optional<soil::SoilParams> soil = std::nullopt;
 };
 
 // Hard ground (carpet-covered wheels on a lab floor, packed soil, rock): μ ≈ 0.9, no rolling loss,
@@ -47,6 +53,10 @@ Material hard_ground();
 // sinkage of 2: a rigid wheel dragged through it ploughs with 2.5 times its load, so that with a
 // rigid front wheel "driving forward was barely possible" (Field Experiment 6.2).
 Material sand();
+// Soft soils: Wong's dry sand and the lunar soil of sim/soil (soil_params.hpp) under the wheels,
+// μ = 0.5 for the chassis.
+Material soft_sand();
+Material soft_lunar_soil();
 
 enum class TerrainKind { kFlat, kSlope, kObstacles, kHeightfield };
 
@@ -95,7 +105,8 @@ void validate(const TerrainSpec& terrain);
 // is allowed. The keys (angles in degrees, lengths in metres):
 //
 //   kind = "flat" | "slope" | "obstacles" | "heightfield"
-//   material = "hard" | "sand" | { friction = 0.7, torsional_friction_m = 0.0,
+//   material = "hard" | "sand" | "soft-sand" | "lunar-soil"
+//            | { friction = 0.7, torsional_friction_m = 0.0,
 //                                  rolling_friction_m = 0.01,
 //                                  skid_sinkage = 0.0 }                  # optional, "hard"
 //   slope_deg = 15.0                       # kind = "slope": + is uphill driving +x

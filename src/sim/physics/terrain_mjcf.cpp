@@ -23,6 +23,8 @@ void write_plane(XmlWriter& xml, const Material& material, const std::array<doub
   XmlWriter::Attributes attributes = material_attributes(material);
   attributes.emplace_back("name", "ground");
   attributes.emplace_back("type", "plane");
+  // Soft soil: the wheels (contype 1) pass through the plane, the chassis (contype 3) does not.
+  if (material.soil) attributes.emplace_back("conaffinity", "2");
   // The plane is infinite for contacts; the size only bounds how it is drawn.
   attributes.emplace_back("size", "100 100 0.1");
   attributes.emplace_back("pos", xml_numbers(pos_m));

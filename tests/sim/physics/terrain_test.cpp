@@ -56,6 +56,27 @@ TEST(TerrainFromToml, NamedAndCustomMaterials) {
   const TerrainSpec sinking =
       read("[terrain]\nkind = \"flat\"\nmaterial = { friction = 0.5, skid_sinkage = 1.5 }\n");
   EXPECT_DOUBLE_EQ(sinking.ground.skid_sinkage, 1.5);
+  EXPECT_FALSE(sand().soil.has_value());  // sand stays MuJoCo's rigid contact
+}
+
+// Soft soils put sim/soil under the wheels: Wong's dry sand and the lunar soil.
+TEST(TerrainFromToml, SoftSoils) {
+  const TerrainSpec sand_terrain = read("[terrain]\nkind = \"slope\"\nslope_deg = 10\nmaterial = \"soft-sand\"\n");
+  ASSERT_TRUE(sand_terrain.ground.soil.has_value());
+  EXPECT_EQ(sand_terrain.ground.soil->name, "sand");
+  EXPECT_DOUBLE_EQ(sand_terrain.ground.soil->frictional_modulus, 1528.43e3);
+  EXPECT_DOUBLE_EQ(sand_terrain.ground.sliding_friction, 0.5);
+  const TerrainSpec lunar = read("[terrain]\nkind = \"flat\"\nmaterial = \"lunar-soil\"\n");
+  ASSERT_TRUE(lunar.ground.soil.has_value());
+  EXPECT_EQ(lunar.ground.soil->name, "lunar soil");
+  TerrainSpec field;
+  field.kind = TerrainKind::kHeightfield;
+  field.ground = soft_sand();
+  field.heightfield.image.width = 2;
+  field.heightfield.image.height = 2;
+  field.heightfield.image.values = {0.0, 0.0, 0.0, 0.0};
+  test_support::expect_invalid_argument([&] { validate(field); },
+                                        {"soft soil", "not a heightfield"});
 }
 
 TEST(TerrainFromToml, SlopeInDegrees) {
@@ -131,6 +152,7 @@ TEST(TerrainFromToml, ErrorsNameTheKey) {
   expect_error("[terrain]\nkind = \"slope\"\nslope_deg = \"steep\"\n", "terrain.slope_deg",
                "number");
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material", "unknown");
+  expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material", "\"soft-sand\"");
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = { friction = -1 }\n",
                "terrain.material.friction", "outside");
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = { friction = 1, roll = 1 }\n",

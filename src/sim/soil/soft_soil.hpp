@@ -1,0 +1,63 @@
+// Soft soil under a set of wheels: the deformable grid (soil_grid.hpp) and one Wong–Reece contact
+// per wheel (wheel_soil.hpp), stepped together. The interface a physics engine needs: per wheel its
+// centre, axle, velocity and spin in, a force and a torque at its centre in the world frame out.
+//
+// Each step, in wheel order: the ground normal is the undisturbed surface's over the wheel's
+// diameter; lane l's sinkage z is the depth of the rim's lowest point (centre + y_l·axle − r·up, up
+// the wheel's own, nearest the normal) below the undisturbed level, along the normal — less
+// unloading_stiffness_ratio times the gap where the rim has risen above the soil it pressed; its
+// exit angle θ2 is the furthest angle behind the bottom (down to −θ1, searched in steps of θ1/16
+// and interpolated) at which the rim is no higher above the soil than at its bottom (+0.1 mm):
+// about 0 behind a rolling wheel, −θ1 under one that sank in place. The contact gives the
+// wrench. Then, again in wheel order, the grid yields: press (plastic sinkage, soil to the
+// patch's rim), excavation, relaxation to the angle of repose around the wheel.
+//
+// Excavation: a blade groove of height h across the width b carries the soil it fills; rolling
+// without slip it lays it down where it took it, so only the slip's share leaves the rut:
+//   V = f_e · b · h · max(0, r_s ω − v) · dt · (lanes in contact / lanes),
+// dropped one cell behind the rim, against the direction of motion.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "sim/soil/soil_grid.hpp"
+#include "sim/soil/wheel_soil.hpp"
+
+namespace marsokhod::sim::soil {
+
+class SoftSoil {
+ public:
+  // Throws std::invalid_argument for bad soil, grid or wheel parameters (no wheels is allowed).
+  SoftSoil(SoilParams soil, GridSpec grid, const std::function<double(double, double)>& surface_m,
+           const std::vector<WheelGeometry>& wheels);
+
+  // wheels.size() must equal the wheel count; dt_s finite and > 0.
+  std::vector<WheelWrench> step(std::span<const WheelKinematics> wheels, double dt_s);
+
+  // The lane sinkages and exit angles step() would use for one wheel, and the normal it uses.
+  struct LaneContacts {
+    std::vector<double> sinkage_m, exit_rad;
+  };
+  LaneContacts lane_contacts(std::size_t wheel, const WheelKinematics& kinematics) const;
+  Vec3 ground_normal(const WheelKinematics& kinematics, std::size_t wheel) const;
+
+  const SoilGrid& grid() const { return grid_; }
+  SoilGrid& grid() { return grid_; }
+  const WheelSoilContact& contact(std::size_t wheel) const { return contacts_.at(wheel); }
+  std::size_t wheel_count() const { return contacts_.size(); }
+
+ private:
+  double exit_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
+                        double radius_m, double sinkage_m) const;
+  void deform(std::size_t wheel, const WheelKinematics& kinematics, const WheelWrench& wrench,
+              double dt_s);
+
+  SoilParams soil_;
+  SoilGrid grid_;
+  std::vector<WheelSoilContact> contacts_;
+};
+
+}  // namespace marsokhod::sim::soil

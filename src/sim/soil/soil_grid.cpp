@@ -1,0 +1,284 @@
+#include "sim/soil/soil_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace marsokhod::sim::soil {
+namespace {
+
+constexpr double kMiss = std::numeric_limits<double>::infinity();
+// A rim this close above a cell still touches it (no soil is pushed underneath the wheel).
+constexpr double kTouchM = 1e-4;
+constexpr unsigned char kContact = 1, kRim = 2;
+
+void fail(const std::string& what) { throw std::invalid_argument("soil grid: " + what); }
+
+}  // namespace
+
+void validate(const GridSpec& spec) {
+  std::ostringstream message;
+  if (!(spec.cell_m >= 0.001 && spec.cell_m <= 0.1)) {
+    message << "cell_m must be within [0.001, 0.1] m (1–2 cm suits a 0.115 m wheel), got "
+            << spec.cell_m;
+  } else if (spec.cells_x < 2 || spec.cells_x > 4096 || spec.cells_y < 2 || spec.cells_y > 4096) {
+    message << "cells_x and cells_y must be within [2, 4096], got " << spec.cells_x << " and "
+            << spec.cells_y;
+  } else if (!std::isfinite(spec.origin_x_m) || !std::isfinite(spec.origin_y_m)) {
+    message << "origin_x_m and origin_y_m must be finite, got " << spec.origin_x_m << " and "
+            << spec.origin_y_m;
+  } else {
+    return;
+  }
+  fail(message.str());
+}
+
+SoilGrid::SoilGrid(GridSpec spec, SoilParams soil,
+                   const std::function<double(double, double)>& initial_surface_m)
+    : spec_(spec), soil_(std::move(soil)) {
+  validate(spec_);
+  validate(soil_);
+  const std::size_t count = static_cast<std::size_t>(spec_.cells_x) * spec_.cells_y;
+  surface_.resize(count);
+  sinkage_.assign(count, 0.0);
+  compaction_.assign(count, 0.0);
+  mark_.assign(count, 0);
+  for (int iy = 0; iy < spec_.cells_y; ++iy) {
+    for (int ix = 0; ix < spec_.cells_x; ++ix) {
+      const double level = initial_surface_m(cell_x_m(ix), cell_y_m(iy));
+      if (!std::isfinite(level)) {
+        std::ostringstream message;
+        message << "the initial surface at cell (" << ix << ", " << iy << ") is " << level
+                << "; it must be a finite height in metres";
+        fail(message.str());
+      }
+      surface_[index(ix, iy)] = level;
+    }
+  }
+  initial_ = surface_;
+  repose_step_m_ = spec_.cell_m * std::tan(soil_.repose_angle_rad) + 1e-12;
+}
+
+double SoilGrid::bilinear(const std::vector<double>& field, const std::vector<double>* added,
+                          double x_m, double y_m) const {
+  const auto axis = [](double coordinate, int cells, int& low, int& high) {
+    const double clamped = std::clamp(coordinate, 0.0, cells - 1.0);
+    low = std::min(static_cast<int>(clamped), cells - 2);
+    high = low + 1;
+    return clamped - low;
+  };
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  const double wx = axis((x_m - spec_.origin_x_m) / spec_.cell_m - 0.5, spec_.cells_x, x0, x1);
+  const double wy = axis((y_m - spec_.origin_y_m) / spec_.cell_m - 0.5, spec_.cells_y, y0, y1);
+  const auto at = [&](int ix, int iy) {
+    const std::size_t i = index(ix, iy);
+    return field[i] + (added != nullptr ? (*added)[i] : 0.0);
+  };
+  return (1.0 - wy) * ((1.0 - wx) * at(x0, y0) + wx * at(x1, y0)) +
+         wy * ((1.0 - wx) * at(x0, y1) + wx * at(x1, y1));
+}
+
+double SoilGrid::surface_m(double x_m, double y_m) const {
+  return bilinear(surface_, nullptr, x_m, y_m);
+}
+
+double SoilGrid::undisturbed_m(double x_m, double y_m) const {
+  return bilinear(surface_, &sinkage_, x_m, y_m);
+}
+
+double SoilGrid::plastic_sinkage_m(double x_m, double y_m) const {
+  return bilinear(sinkage_, nullptr, x_m, y_m);
+}
+
+double SoilGrid::touch_tolerance_m(double x_m, double y_m) const {
+  return std::max(kTouchM, plastic_sinkage_m(x_m, y_m) / soil_.unloading_stiffness_ratio);
+}
+
+Vec3 SoilGrid::normal(double x_m, double y_m, double span_m) const {
+  const double h = 0.5 * std::max(span_m, spec_.cell_m);
+  const double slope_x = (undisturbed_m(x_m + h, y_m) - undisturbed_m(x_m - h, y_m)) / (2.0 * h);
+  const double slope_y = (undisturbed_m(x_m, y_m + h) - undisturbed_m(x_m, y_m - h)) / (2.0 * h);
+  const Vec3 up{-slope_x, -slope_y, 1.0};
+  return (1.0 / norm(up)) * up;
+}
+
+void SoilGrid::set_cell_surface_m(int ix, int iy, double level_m) {
+  if (ix < 0 || iy < 0 || ix >= spec_.cells_x || iy >= spec_.cells_y || !std::isfinite(level_m)) {
+    fail("set_cell_surface_m: the cell must lie in the grid and the level be finite");
+  }
+  surface_[index(ix, iy)] = level_m;
+  initial_[index(ix, iy)] = level_m;
+}
+
+// The height of the cylinder's underside above (x, y), or +∞ where the vertical line misses it.
+double SoilGrid::rim_below_m(const Cylinder& wheel, double x_m, double y_m) const {
+  const double ax = wheel.axle[0], ay = wheel.axle[1];
+  const double horizontal = ax * ax + ay * ay;
+  if (horizontal < 1e-12) return kMiss;
+  const double dx = x_m - wheel.center_m[0], dy = y_m - wheel.center_m[1];
+  const double along = (dx * ax + dy * ay) / horizontal;
+  if (std::abs(along) > 0.5 * wheel.width_m) return kMiss;
+  const double ex = dx - along * ax, ey = dy - along * ay;
+  const double across2 = ex * ex + ey * ey;
+  if (across2 >= wheel.radius_m * wheel.radius_m) return kMiss;
+  return wheel.center_m[2] + along * wheel.axle[2] -
+         std::sqrt(wheel.radius_m * wheel.radius_m - across2);
+}
+
+void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
+  const double depth =
+      volume_m3 / (static_cast<double>(cells.size()) * spec_.cell_m * spec_.cell_m);
+  for (int cell : cells) surface_[static_cast<std::size_t>(cell)] += depth;
+  volumes_.fill_m3 += volume_m3;
+}
+
+Footprint SoilGrid::press(const Cylinder& wheel) {
+  Footprint footprint;
+  // The cylinder's shadow: half its width along the axle, its radius across.
+  const auto reach = [&](double axle_component) {
+    return std::abs(axle_component) * 0.5 * wheel.width_m +
+           wheel.radius_m * std::sqrt(std::max(1.0 - axle_component * axle_component, 0.0));
+  };
+  const auto cell_of = [&](double coordinate, double origin, int cells) {
+    return std::clamp(static_cast<int>(std::floor((coordinate - origin) / spec_.cell_m)), 0,
+                      cells - 1);
+  };
+  const double reach_x = reach(wheel.axle[0]), reach_y = reach(wheel.axle[1]);
+  footprint.min_x = cell_of(wheel.center_m[0] - reach_x, spec_.origin_x_m, spec_.cells_x);
+  footprint.max_x = cell_of(wheel.center_m[0] + reach_x, spec_.origin_x_m, spec_.cells_x);
+  footprint.min_y = cell_of(wheel.center_m[1] - reach_y, spec_.origin_y_m, spec_.cells_y);
+  footprint.max_y = cell_of(wheel.center_m[1] + reach_y, spec_.origin_y_m, spec_.cells_y);
+  const double area = spec_.cell_m * spec_.cell_m;
+  double displaced_m3 = 0.0;
+  for (int iy = footprint.min_y; iy <= footprint.max_y; ++iy) {
+    for (int ix = footprint.min_x; ix <= footprint.max_x; ++ix) {
+      const std::size_t i = index(ix, iy);
+      const double rim = rim_below_m(wheel, cell_x_m(ix), cell_y_m(iy));
+      // Within the elastic rebound of its plastic sinkage the cell still carries the rim.
+      const double rebound = sinkage_[i] / soil_.unloading_stiffness_ratio;
+      if (rim > surface_[i] + std::max(kTouchM, rebound)) continue;
+      footprint.contact_cells.push_back(static_cast<int>(i));
+      mark_[i] = kContact;
+      if (rim >= surface_[i]) continue;
+      const double cut = surface_[i] - rim;
+      surface_[i] = rim;
+      sinkage_[i] += cut;
+      compaction_[i] += (1.0 - soil_.displaced_fraction) * cut;
+      volumes_.cut_m3 += cut * area;
+      volumes_.compacted_m3 += (1.0 - soil_.displaced_fraction) * cut * area;
+      displaced_m3 += soil_.displaced_fraction * cut * area;
+    }
+  }
+  std::sort(footprint.contact_cells.begin(), footprint.contact_cells.end());
+  shrink_to_contact(footprint);
+  // The patch's rim: the 8-neighbours of contact cells that the wheel does not touch.
+  std::vector<int> rim_cells;
+  for (int cell : footprint.contact_cells) {
+    const int cx = cell % spec_.cells_x, cy = cell / spec_.cells_x;
+    for (int iy = std::max(cy - 1, 0); iy <= std::min(cy + 1, spec_.cells_y - 1); ++iy) {
+      for (int ix = std::max(cx - 1, 0); ix <= std::min(cx + 1, spec_.cells_x - 1); ++ix) {
+        const std::size_t i = index(ix, iy);
+        if (mark_[i] != 0) continue;
+        mark_[i] = kRim;
+        rim_cells.push_back(static_cast<int>(i));
+      }
+    }
+  }
+  std::sort(rim_cells.begin(), rim_cells.end());
+  for (int cell : footprint.contact_cells) mark_[static_cast<std::size_t>(cell)] = 0;
+  for (int cell : rim_cells) mark_[static_cast<std::size_t>(cell)] = 0;
+  if (displaced_m3 > 0.0) {
+    if (rim_cells.empty()) {  // nowhere to go (the grid's edge): compacted after all
+      volumes_.compacted_m3 += displaced_m3;
+    } else {
+      spread(rim_cells, displaced_m3);
+    }
+  }
+  return footprint;
+}
+
+// The box of the contact cells (empty when none), where relax() then works.
+void SoilGrid::shrink_to_contact(Footprint& footprint) const {
+  if (footprint.contact_cells.empty()) {
+    footprint.max_x = footprint.min_x - 1;
+    footprint.max_y = footprint.min_y - 1;
+    return;
+  }
+  footprint.min_x = footprint.min_y = std::numeric_limits<int>::max();
+  footprint.max_x = footprint.max_y = std::numeric_limits<int>::min();
+  for (int cell : footprint.contact_cells) {
+    const int cx = cell % spec_.cells_x, cy = cell / spec_.cells_x;
+    footprint.min_x = std::min(footprint.min_x, cx);
+    footprint.max_x = std::max(footprint.max_x, cx);
+    footprint.min_y = std::min(footprint.min_y, cy);
+    footprint.max_y = std::max(footprint.max_y, cy);
+  }
+}
+
+void SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, const Vec3& toward,
+                        double behind_m, double volume_m3) {
+  if (footprint.contact_cells.empty() || !(volume_m3 > 0.0)) return;
+  const double tx = toward[0], ty = toward[1];
+  const double length = std::hypot(tx, ty);
+  const double ax = wheel.axle[0], ay = wheel.axle[1];
+  const double axle_length = std::hypot(ax, ay);
+  if (length < 1e-9 || axle_length < 1e-9) return;
+  const int lanes = std::max(1, static_cast<int>(std::lround(wheel.width_m / spec_.cell_m)));
+  std::vector<int> targets;
+  for (int lane = 0; lane < lanes; ++lane) {
+    const double offset = ((lane + 0.5) / lanes - 0.5) * wheel.width_m;
+    const double x = wheel.center_m[0] - behind_m * tx / length + offset * ax / axle_length;
+    const double y = wheel.center_m[1] - behind_m * ty / length + offset * ay / axle_length;
+    const double fx = std::floor((x - spec_.origin_x_m) / spec_.cell_m);
+    const double fy = std::floor((y - spec_.origin_y_m) / spec_.cell_m);
+    if (fx < 0.0 || fy < 0.0 || fx >= spec_.cells_x || fy >= spec_.cells_y) continue;
+    targets.push_back(static_cast<int>(index(static_cast<int>(fx), static_cast<int>(fy))));
+  }
+  std::sort(targets.begin(), targets.end());
+  targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
+  if (targets.empty()) return;  // it would land off the grid: keep the soil where it is
+  const double depth = volume_m3 / (static_cast<double>(footprint.contact_cells.size()) *
+                                    spec_.cell_m * spec_.cell_m);
+  for (int cell : footprint.contact_cells) surface_[static_cast<std::size_t>(cell)] -= depth;
+  volumes_.cut_m3 += volume_m3;
+  volumes_.excavated_m3 += volume_m3;
+  spread(targets, volume_m3);
+}
+
+bool SoilGrid::relax_pair(std::size_t first, std::size_t second, double limit_m) {
+  const double difference = surface_[first] - surface_[second];
+  if (std::abs(difference) <= limit_m) return false;
+  const double moved = 0.5 * (std::abs(difference) - limit_m);
+  const std::size_t higher = difference > 0.0 ? first : second;
+  const std::size_t lower = difference > 0.0 ? second : first;
+  surface_[higher] -= moved;
+  surface_[lower] += moved;
+  const double volume = moved * spec_.cell_m * spec_.cell_m;
+  volumes_.cut_m3 += volume;
+  volumes_.fill_m3 += volume;
+  volumes_.relaxed_m3 += volume;
+  return true;
+}
+
+void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {
+  if (footprint.max_x < footprint.min_x || footprint.max_y < footprint.min_y) return;
+  const int x0 = std::max(footprint.min_x - margin_cells, 0);
+  const int x1 = std::min(footprint.max_x + margin_cells, spec_.cells_x - 1);
+  const int y0 = std::max(footprint.min_y - margin_cells, 0);
+  const int y1 = std::min(footprint.max_y + margin_cells, spec_.cells_y - 1);
+  const double limit = repose_step_m_;
+  for (int pass = 0; pass < passes; ++pass) {
+    bool moved = false;
+    for (int iy = y0; iy <= y1; ++iy) {
+      for (int ix = x0; ix <= x1; ++ix) {
+        if (ix < x1) moved |= relax_pair(index(ix, iy), index(ix + 1, iy), limit);
+        if (iy < y1) moved |= relax_pair(index(ix, iy), index(ix, iy + 1), limit);
+      }
+    }
+    if (!moved) return;
+  }
+}
+
+}  // namespace marsokhod::sim::soil

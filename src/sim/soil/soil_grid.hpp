@@ -1,0 +1,121 @@
+// A deformable soil height grid, SCM-style (Soil Contact Model: Krenn and Hirzinger, 2009): square
+// cells of side cell_m, each with
+//   surface_m      the soil's current level (world z),
+//   sinkage_m      the plastic sinkage: how deep rims have pressed the cell down in all,
+//   compaction_m   the part of that sinkage by which the soil was compacted in place.
+// surface_m + sinkage_m is the undisturbed level from which Bekker's sinkage z is measured, so a
+// wheel resting in its own rut is carried as at the moment it pressed it.
+//
+// Contact (press): a cell touches the rim while the rim is no higher above it than its elastic
+// rebound, sinkage_m / unloading_stiffness_ratio (0.1 mm at least).
+// Plastic flow (press): a cell whose surface lies above the rim is cut down to the rim: the cut
+// depth d adds to sinkage_m; (1 − f)·d to compaction_m, and f·d (f = displaced_fraction) is pushed
+// to the patch's rim, the cells next to the contact that the rim does not touch, in equal shares.
+// Excavation (excavate): a volume taken evenly from the contact cells and dropped behind the wheel.
+// Repose (relax): neighbours (x then y, in raster order) whose heights differ by more than
+// cell_m·tan(repose angle) move soil from the higher to the lower until they differ by exactly that
+// — Gauss–Seidel passes within a window. Every loop runs in a fixed order: bit-for-bit repeatable.
+//
+// Bookkeeping: cut_m3 counts every volume taken from a cell, fill_m3 every volume added, so
+//   Σ(surface − initial surface)·cell² = fill − cut,   cut − fill = compacted_m3.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "sim/soil/soil_params.hpp"
+#include "sim/soil/vec3.hpp"
+
+namespace marsokhod::sim::soil {
+
+struct GridSpec {
+  double origin_x_m = -1.0;  // the corner of cell (0, 0)
+  double origin_y_m = -1.0;
+  double cell_m = 0.02;
+  int cells_x = 100;
+  int cells_y = 100;
+};
+
+// Throws std::invalid_argument naming the field (cell 1 mm – 10 cm, 2 – 4096 cells a side).
+void validate(const GridSpec& spec);
+
+struct SoilVolumes {
+  double cut_m3 = 0.0;        // soil taken from cells (pressed, excavated, slid off a slope)
+  double fill_m3 = 0.0;       // soil added to cells
+  double compacted_m3 = 0.0;  // soil compacted in place (the volume the grid lost)
+  double excavated_m3 = 0.0;  // the part of cut_m3 the blades carried behind a wheel
+  double relaxed_m3 = 0.0;    // the part of cut_m3 that slid down to the angle of repose
+};
+
+// A rigid cylinder seen by the grid: its centre, unit axle, radius and width.
+struct Cylinder {
+  Vec3 center_m{};
+  Vec3 axle{0.0, 1.0, 0.0};
+  double radius_m = 0.115;
+  double width_m = 0.15;
+};
+
+// The cells a press touched, for excavation and relaxation to act on.
+struct Footprint {
+  std::vector<int> contact_cells;                    // cell indices, ascending
+  int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // their box (empty: max < min)
+};
+
+class SoilGrid {
+ public:
+  // The surface starts at initial_surface_m(x, y) at each cell's centre. Throws
+  // std::invalid_argument for a bad spec or soil, or a non-finite initial surface.
+  SoilGrid(GridSpec spec, SoilParams soil,
+           const std::function<double(double, double)>& initial_surface_m);
+
+  const GridSpec& spec() const { return spec_; }
+  // Bilinear between cell centres; beyond the grid the nearest edge cell's value.
+  double surface_m(double x_m, double y_m) const;
+  double undisturbed_m(double x_m, double y_m) const;
+  double plastic_sinkage_m(double x_m, double y_m) const;
+  // How far above the soil a rim may be and still touch it: the elastic rebound of the plastic
+  // sinkage, sinkage_m / unloading_stiffness_ratio, or 0.1 mm.
+  double touch_tolerance_m(double x_m, double y_m) const;
+  // The undisturbed surface's upward unit normal, from central differences span_m apart.
+  Vec3 normal(double x_m, double y_m, double span_m) const;
+
+  double cell_surface_m(int ix, int iy) const { return surface_[index(ix, iy)]; }
+  double cell_sinkage_m(int ix, int iy) const { return sinkage_[index(ix, iy)]; }
+  double cell_compaction_m(int ix, int iy) const { return compaction_[index(ix, iy)]; }
+  double cell_initial_m(int ix, int iy) const { return initial_[index(ix, iy)]; }
+  void set_cell_surface_m(int ix, int iy, double level_m);  // for tests and scenario set-up
+  const SoilVolumes& volumes() const { return volumes_; }
+
+  // Cuts the cells under the cylinder down to its rim; returns the contact patch.
+  Footprint press(const Cylinder& wheel);
+  // Takes volume_m3 evenly from the footprint's contact cells and drops it on the cells
+  // behind_m behind the centre (along −toward, horizontal), across the wheel's width.
+  void excavate(const Footprint& footprint, const Cylinder& wheel, const Vec3& toward,
+                double behind_m, double volume_m3);
+  // Relaxes slopes steeper than the angle of repose in the footprint's box grown by margin cells.
+  void relax(const Footprint& footprint, int margin_cells, int passes);
+
+ private:
+  std::size_t index(int ix, int iy) const {
+    return static_cast<std::size_t>(iy) * static_cast<std::size_t>(spec_.cells_x) +
+           static_cast<std::size_t>(ix);
+  }
+  double cell_x_m(int ix) const { return spec_.origin_x_m + (ix + 0.5) * spec_.cell_m; }
+  double cell_y_m(int iy) const { return spec_.origin_y_m + (iy + 0.5) * spec_.cell_m; }
+  double bilinear(const std::vector<double>& field, const std::vector<double>* added, double x_m,
+                  double y_m) const;
+  double rim_below_m(const Cylinder& wheel, double x_m, double y_m) const;
+  void spread(const std::vector<int>& cells, double volume_m3);
+  void shrink_to_contact(Footprint& footprint) const;
+  bool relax_pair(std::size_t higher_or_lower, std::size_t other, double limit_m);
+
+  GridSpec spec_;
+  SoilParams soil_;
+  std::vector<double> surface_, sinkage_, compaction_, initial_;
+  std::vector<unsigned char> mark_;  // scratch: 1 contact, 2 rim
+  double repose_step_m_ = 0.0;       // the steepest difference of neighbours, cell·tan(repose)
+  // (A tiny tolerance in it stops endless passes over differences rounding keeps at the limit.)
+  SoilVolumes volumes_;
+};
+
+}  // namespace marsokhod::sim::soil

@@ -1,0 +1,227 @@
+#include "sim/soil/wheel_soil.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+#include <stdexcept>
+
+namespace marsokhod::sim::soil {
+namespace {
+
+// A reversal of the rolling direction slower than this keeps the current frame (no chatter at
+// rest).
+constexpr double kReversalSpeedMps = 1e-3;
+
+double mobilised(double displacement_m, double shear_modulus_m) {
+  const double share = 1.0 - std::exp(-std::abs(displacement_m) / shear_modulus_m);
+  return displacement_m < 0.0 ? -share : share;
+}
+
+}  // namespace
+
+// The motion frame in world coordinates: x along the direction the arc lies in, y the axle,
+// z the wheel's up in its own plane.
+struct WheelSoilContact::Frame {
+  Vec3 forward, axle, up;
+  double spin_radps, travel_mps, lateral_mps, slip;
+  int handedness;
+};
+
+WheelSoilContact::WheelSoilContact(SoilParams soil, WheelGeometry wheel)
+    : soil_(std::move(soil)), wheel_(wheel) {
+  validate(soil_);
+  validate(wheel_);
+  strength_ = shear_strength(soil_);
+  const auto size = static_cast<std::size_t>(wheel_.lanes * wheel_.arc_samples);
+  shear_t_.assign(size, 0.0);
+  shear_y_.assign(size, 0.0);
+  scratch_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+}
+
+double WheelSoilContact::lane_offset_m(int lane) const {
+  return ((lane + 0.5) / wheel_.lanes - 0.5) * wheel_.width_m;
+}
+
+void WheelSoilContact::update_direction(double rim_speed_mps, double travel_speed_mps) {
+  const double lead = rim_speed_mps + travel_speed_mps;
+  const int wanted = lead > 0.0 ? 1 : -1;
+  if (wanted == direction_ || std::abs(lead) < kReversalSpeedMps) return;
+  direction_ = wanted;
+  const int samples = wheel_.arc_samples;
+  for (int lane = 0; lane < wheel_.lanes; ++lane) {
+    double* jt = shear_t_.data() + lane * samples;
+    double* jy = shear_y_.data() + lane * samples;
+    std::reverse(jt, jt + samples);
+    std::reverse(jy, jy + samples);
+    for (int k = 0; k < samples; ++k) jt[k] = -jt[k];
+  }
+}
+
+// Semi-Lagrangian transport of the lane's displacement along the arc, then the step's slip.
+void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_radps,
+                                   double travel_mps, double lateral_mps, double dt_s) {
+  const int samples = wheel_.arc_samples;
+  const double span = arc.entry_rad - arc.exit_rad;
+  const double shift = std::max(spin_radps, 0.0) * dt_s / span * samples;  // in samples
+  const double rs = wheel_.shear_radius_m();
+  const double spacing = 1.0 / samples;
+  for (std::vector<double>* field : {&shear_t_, &shear_y_}) {
+    double* j = field->data() + lane * samples;
+    std::copy(j, j + samples, scratch_.begin());
+    for (int k = 0; k < samples; ++k) {
+      const double from = k - shift;  // sample coordinate; the entry (j = 0) is at −0.5
+      double value = 0.0;
+      if (from > 0.0) {
+        const int below = static_cast<int>(from);
+        const double weight = from - below;
+        value = (1.0 - weight) * scratch_[static_cast<std::size_t>(below)] +
+                weight * scratch_[static_cast<std::size_t>(std::min(below + 1, samples - 1))];
+      } else if (from > -0.5) {
+        value = scratch_[0] * (from + 0.5) / 0.5;
+      }
+      // The slip rate at the middle of the path since the last step, at least half a sample
+      // upstream: the linear interpolation's steady state then sums it by the midpoint rule.
+      const double position = (k + 0.5) * spacing;
+      const double middle =
+          std::max(position - std::max(shift, 1.0) * spacing / 2.0, position / 2.0);
+      const double theta = arc.entry_rad - middle * span;
+      const double rate =
+          field == &shear_t_ ? rs * spin_radps - travel_mps * std::cos(theta) : -lateral_mps;
+      j[k] = value + rate * dt_s;
+    }
+  }
+}
+
+void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const Frame& frame,
+                                         WheelWrench& wrench) const {
+  const int samples = wheel_.arc_samples;
+  const double r = wheel_.rim_radius_m, rs = wheel_.shear_radius_m(), b = wheel_.width_m;
+  const double step = (arc.entry_rad - arc.exit_rad) / samples;
+  const double area = step * b / wheel_.lanes;
+  const Vec3 lane_center = lane_offset_m(lane) * frame.axle;
+  const std::size_t base = static_cast<std::size_t>(lane * samples);
+  for (int k = 0; k < samples; ++k) {
+    const double theta = arc.entry_rad - (k + 0.5) * step;
+    const double s = std::sin(theta), c = std::cos(theta);
+    const Vec3 outward = s * frame.forward - c * frame.up;  // from the centre to the rim
+    const Vec3 tangent = c * frame.forward + s * frame.up;
+    const double sigma = normal_stress_pa(soil_, arc, r, b, theta);
+    const SurfaceShear tau = rim_shear(strength_, wheel_, frame.handedness, sigma,
+                                       shear_t_[base + k], shear_y_[base + k]);
+    const Vec3 normal_force = (-sigma * r * area) * outward;
+    const Vec3 shear_force =
+        (tau.tangential_pa * rs * area) * tangent + (tau.lateral_pa * rs * area) * frame.axle;
+    wrench.force_n += normal_force + shear_force;
+    wrench.torque_nm += cross(lane_center + r * outward, normal_force);
+    wrench.torque_nm += cross(lane_center + rs * outward, shear_force);
+  }
+}
+
+void WheelSoilContact::add_damping(double contact_area_m2, const Frame& frame,
+                                   const Vec3& velocity_mps, WheelWrench& wrench) const {
+  const double normal = dot(wrench.force_n, frame.up);
+  double damping =
+      -soil_.vertical_damping_pa_s_per_m * contact_area_m2 * dot(velocity_mps, frame.up);
+  damping = std::max(damping, -std::max(normal, 0.0));  // never sucks the wheel in
+  wrench.force_n += damping * frame.up;
+}
+
+void WheelSoilContact::add_sidewall(std::span<const double> lane_sinkage_m, const Frame& frame,
+                                    WheelWrench& wrench) const {
+  double mean = 0.0;
+  int count = 0;
+  const int samples = wheel_.arc_samples;
+  for (int lane = 0; lane < wheel_.lanes; ++lane) {
+    if (lane_sinkage_m[static_cast<std::size_t>(lane)] <= 0.0) continue;
+    for (int k = 0; k < samples; ++k)
+      mean += shear_y_[static_cast<std::size_t>(lane * samples + k)];
+    count += samples;
+  }
+  if (count == 0) return;
+  mean /= count;
+  // The face that moves into the soil: the wheel pulled toward −y (j_y > 0) pushes with its −y
+  // side.
+  const int leading = mean > 0.0 ? 0 : wheel_.lanes - 1;
+  const double sinkage = lane_sinkage_m[static_cast<std::size_t>(leading)];
+  const double force = sidewall_resistance_n(soil_, wheel_.rim_radius_m, sinkage) *
+                       mobilised(mean, soil_.shear_modulus_m);
+  const double side = mean > 0.0 ? -0.5 : 0.5;
+  const Vec3 at = (side * wheel_.width_m) * frame.axle -
+                  (wheel_.rim_radius_m - 0.5 * std::max(sinkage, 0.0)) * frame.up;
+  const Vec3 push = force * frame.axle;
+  wrench.force_n += push;
+  wrench.torque_nm += cross(at, push);
+  wrench.diagnostics.sidewall_n = force;
+}
+
+WheelSoilContact::Frame WheelSoilContact::motion_frame(const WheelKinematics& kinematics,
+                                                       const Vec3& forward_wheel,
+                                                       double travel_mps) const {
+  Frame frame;
+  frame.forward = static_cast<double>(direction_) * forward_wheel;
+  frame.axle = kinematics.axle;
+  frame.up = cross(forward_wheel, kinematics.axle);
+  frame.spin_radps = direction_ * kinematics.spin_radps;
+  frame.travel_mps = direction_ * travel_mps;
+  frame.lateral_mps = dot(kinematics.velocity_mps, kinematics.axle);
+  frame.slip = regularised_slip(wheel_.shear_radius_m() * frame.spin_radps, frame.travel_mps);
+  frame.handedness = direction_ * static_cast<int>(wheel_.handedness);
+  return frame;
+}
+
+WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3& ground_normal,
+                                   std::span<const double> lane_sinkage_m,
+                                   std::span<const double> lane_exit_rad, double dt_s) {
+  const auto lanes = static_cast<std::size_t>(wheel_.lanes);
+  if (lane_sinkage_m.size() != lanes || (!lane_exit_rad.empty() && lane_exit_rad.size() != lanes) ||
+      !(dt_s >= 0.0) || !std::isfinite(dt_s)) {
+    std::ostringstream message;
+    message << "WheelSoilContact::step: expected " << wheel_.lanes
+            << " lane sinkages (and as many exit angles, or none) and a finite dt_s >= 0, got "
+            << lane_sinkage_m.size() << ", " << lane_exit_rad.size() << " and " << dt_s;
+    throw std::invalid_argument(message.str());
+  }
+  const Vec3 rolling = cross(kinematics.axle, ground_normal);
+  const double length = norm(rolling);
+  WheelWrench wrench;
+  if (length < 1e-9) return wrench;  // the axle stands on its end: no rolling contact
+  const Vec3 forward_wheel = (1.0 / length) * rolling;
+  const double rim_speed = wheel_.shear_radius_m() * kinematics.spin_radps;
+  const double travel = dot(kinematics.velocity_mps, forward_wheel);
+  update_direction(rim_speed, travel);
+  const Frame frame = motion_frame(kinematics, forward_wheel, travel);
+  double contact_area = 0.0;
+  for (int lane = 0; lane < wheel_.lanes; ++lane) {
+    const double sinkage = lane_sinkage_m[static_cast<std::size_t>(lane)];
+    if (!(sinkage > 0.0)) {  // released: the soil the rim left keeps no displacement
+      const auto first = static_cast<std::ptrdiff_t>(lane * wheel_.arc_samples);
+      std::fill(shear_t_.begin() + first, shear_t_.begin() + first + wheel_.arc_samples, 0.0);
+      std::fill(shear_y_.begin() + first, shear_y_.begin() + first + wheel_.arc_samples, 0.0);
+      continue;
+    }
+    const double exit = lane_exit_rad.empty() ? 0.0 : lane_exit_rad[static_cast<std::size_t>(lane)];
+    const ContactArc arc = contact_arc(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit);
+    advect_lane(lane, arc, frame.spin_radps, frame.travel_mps, frame.lateral_mps, dt_s);
+    add_lane_stresses(lane, arc, frame, wrench);
+    contact_area +=
+        (arc.entry_rad - arc.exit_rad) * wheel_.rim_radius_m * wheel_.width_m / wheel_.lanes;
+    wrench.sinkage_m = std::max(wrench.sinkage_m, std::min(sinkage, wheel_.rim_radius_m));
+    wrench.diagnostics.entry_angle_rad =
+        std::max(wrench.diagnostics.entry_angle_rad, arc.entry_rad);
+    wrench.diagnostics.in_contact = true;
+  }
+  if (wrench.diagnostics.in_contact) {
+    add_damping(contact_area, frame, kinematics.velocity_mps, wrench);
+    add_sidewall(lane_sinkage_m, frame, wrench);
+  }
+  WheelDiagnostics& diagnostics = wrench.diagnostics;
+  diagnostics.slip = direction_ * frame.slip;
+  diagnostics.normal_load_n = dot(wrench.force_n, frame.up);
+  diagnostics.drawbar_pull_n = dot(wrench.force_n, forward_wheel);
+  diagnostics.lateral_n = dot(wrench.force_n, kinematics.axle);
+  diagnostics.resisting_torque_nm = dot(wrench.torque_nm, kinematics.axle);
+  return wrench;
+}
+
+}  // namespace marsokhod::sim::soil

@@ -1,0 +1,111 @@
+// One rigid bladed wheel in soil: the Wong–Reece stresses (wheel_stress.hpp) over a few lanes
+// across its width, with a shear-displacement state instead of the slip ratio, as a force and
+// torque at the wheel's centre in the world frame.
+//
+// Shear displacement state. Per lane and arc sample, j = (j_t, j_y): how far the blade tips have
+// slid against the soil they touch, signed as the soil's pull on the wheel. Each step
+//   j(u, t + dt) = j(u − Δu, t) + v_j(θ) dt,   Δu = max(ω, 0) dt / (θ1 − θ2),
+//   v_jt = r_s ω − v_x cos θ,   v_jy = −v_y,
+// u ∈ [0, 1] the position along the arc from entry to exit: the rim carries its displacement from
+// the entry (fresh soil, j = 0) to the exit at its own angular speed ω (semi-Lagrangian, stable at
+// any step). In steady rolling this is exactly Wong–Reece's
+//   j_t(θ) = r_s[(θ1 − θ) − (1 − s)(sin θ1 − sin θ)],   j_y(θ) = −v_y (θ1 − θ) / ω,
+// but it needs no slip ratio: at rest Δu = 0 and j integrates the creep, so a still wheel on a
+// slope is held like a spring of stiffness ≈ (c + σ tan φ)/K per unit area, and a locked wheel
+// being dragged is regular.
+//
+// Direction: the arc's entry lies ahead of the wheel in the direction of r_s ω + v_x; when that
+// changes sign (beyond 1 mm/s) the motion frame mirrors (x → −x, the state mirrored along the arc
+// and j_t negated, the blades' handedness flipped with it).
+//
+// Damping: over the contact's area A = Σ_lanes Δb·r·(θ1 − θ2), a force −R·A·v_up along the wheel's
+// up (SoilParams::vertical_damping_pa_s_per_m), never pulling the wheel down into the soil beyond
+// cancelling the soil's own normal force.
+//
+// Sidewall: moving sideways, the leading side face bulldozes soil with Rankine's passive pressure
+// (sidewall_resistance_n), mobilised like the shear by the arc's mean lateral displacement.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "sim/soil/soil_params.hpp"
+#include "sim/soil/vec3.hpp"
+#include "sim/soil/wheel_stress.hpp"
+
+namespace marsokhod::sim::soil {
+
+// The wheel as the physics engine sees it, in the world frame.
+struct WheelKinematics {
+  Vec3 center_m{};
+  Vec3 axle{0.0, 1.0, 0.0};  // unit, toward the rover's left for every wheel
+  Vec3 velocity_mps{};       // of the wheel's centre
+  double spin_radps = 0.0;   // about axle; > 0 rolls the wheel along axle × ground normal
+};
+
+struct WheelDiagnostics {
+  bool in_contact = false;
+  double slip = 0.0;             // regularised slip (wheel_stress.hpp), sign of the wheel's frame
+  double entry_angle_rad = 0.0;  // largest θ1 over the lanes
+  double normal_load_n = 0.0;    // force along the ground normal
+  double drawbar_pull_n = 0.0;   // force along axle × ground normal
+  double lateral_n = 0.0;        // force along the axle
+  double resisting_torque_nm = 0.0;  // torque about the axle (opposes a driving wheel: < 0)
+  double sidewall_n = 0.0;           // the bulldozing part of lateral_n
+};
+
+struct WheelWrench {
+  Vec3 force_n{};          // on the wheel, world frame
+  Vec3 torque_nm{};        // about the wheel's centre, world frame
+  double sinkage_m = 0.0;  // the deepest lane's
+  WheelDiagnostics diagnostics;
+};
+
+class WheelSoilContact {
+ public:
+  // Throws std::invalid_argument (validate()) for bad soil or wheel parameters.
+  WheelSoilContact(SoilParams soil, WheelGeometry wheel);
+
+  // lane_sinkage_m: per lane (wheel.lanes, from −y to +y across the width) the depth of the rim's
+  // lowest point below the undisturbed surface; ≤ 0 is no contact. lane_exit_rad: per lane the
+  // exit angle θ2 ∈ [−θ1, 0] in the direction of motion (wheel_stress.hpp), or empty for 0 (a
+  // rolling wheel's rut). ground_normal: unit, up.
+  WheelWrench step(const WheelKinematics& kinematics, const Vec3& ground_normal,
+                   std::span<const double> lane_sinkage_m, std::span<const double> lane_exit_rad,
+                   double dt_s);
+  WheelWrench step(const WheelKinematics& kinematics, const Vec3& ground_normal,
+                   std::span<const double> lane_sinkage_m, double dt_s) {
+    return step(kinematics, ground_normal, lane_sinkage_m, {}, dt_s);
+  }
+
+  // Lateral offset of lane l's centre along the axle.
+  double lane_offset_m(int lane) const;
+  int direction() const { return direction_; }
+  // lanes × arc samples, lane-major, in the motion frame.
+  const std::vector<double>& tangential_displacement_m() const { return shear_t_; }
+  const std::vector<double>& lateral_displacement_m() const { return shear_y_; }
+  const SoilParams& soil() const { return soil_; }
+  const WheelGeometry& wheel() const { return wheel_; }
+
+ private:
+  struct Frame;
+  void update_direction(double rim_speed_mps, double travel_speed_mps);
+  Frame motion_frame(const WheelKinematics& kinematics, const Vec3& forward_wheel,
+                     double travel_mps) const;
+  void advect_lane(int lane, const ContactArc& arc, double spin_radps, double travel_mps,
+                   double lateral_mps, double dt_s);
+  void add_lane_stresses(int lane, const ContactArc& arc, const Frame& frame,
+                         WheelWrench& wrench) const;
+  void add_damping(double contact_area_m2, const Frame& frame, const Vec3& velocity_mps,
+                   WheelWrench& wrench) const;
+  void add_sidewall(std::span<const double> lane_sinkage_m, const Frame& frame,
+                    WheelWrench& wrench) const;
+
+  SoilParams soil_;
+  WheelGeometry wheel_;
+  ShearStrength strength_;
+  int direction_ = 1;
+  std::vector<double> shear_t_, shear_y_, scratch_;
+};
+
+}  // namespace marsokhod::sim::soil

@@ -1,0 +1,181 @@
+#include "sim/soil/wheel_stress.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace marsokhod::sim::soil {
+namespace {
+
+// Janosi–Hanamoto's mobilised share 1 − e^(−|j|/K), signed as j.
+double mobilised(double displacement_m, double shear_modulus_m) {
+  const double share = 1.0 - std::exp(-std::abs(displacement_m) / shear_modulus_m);
+  return displacement_m < 0.0 ? -share : share;
+}
+
+}  // namespace
+
+double regularised_slip(double rim_speed_mps, double travel_speed_mps) {
+  const double scale =
+      std::max({std::abs(rim_speed_mps), std::abs(travel_speed_mps), kSlipSpeedFloorMps});
+  return std::clamp((rim_speed_mps - travel_speed_mps) / scale, -1.0, 1.0);
+}
+
+ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinkage_m, double slip,
+                       double exit_rad) {
+  ContactArc arc;
+  const double sinkage = std::clamp(sinkage_m, 0.0, rim_radius_m);
+  arc.cos_entry = 1.0 - sinkage / rim_radius_m;
+  arc.entry_rad = std::acos(arc.cos_entry);
+  arc.exit_rad = std::clamp(exit_rad, -arc.entry_rad, 0.0);
+  const double ratio =
+      std::clamp(soil.max_stress_angle_c1 + soil.max_stress_angle_c2 * slip, 0.0, 1.0);
+  arc.max_stress_rad = ratio * (arc.entry_rad + arc.exit_rad);
+  arc.sinkage_exponent = soil.sinkage_exponent + soil.slip_sinkage_exponent * std::abs(slip);
+  return arc;
+}
+
+double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,
+                        double width_m, double theta_rad) {
+  if (theta_rad > arc.entry_rad || theta_rad < arc.exit_rad || arc.entry_rad <= 0.0) return 0.0;
+  double equivalent = theta_rad;  // θ*: behind θm the front's stresses, compressed onto [θ2, θm]
+  if (theta_rad < arc.max_stress_rad && arc.max_stress_rad > arc.exit_rad) {
+    equivalent = arc.entry_rad - (theta_rad - arc.exit_rad) * (arc.entry_rad - arc.max_stress_rad) /
+                                     (arc.max_stress_rad - arc.exit_rad);
+  }
+  const double n = arc.sinkage_exponent;
+  const double modulus = soil.cohesive_modulus / width_m + soil.frictional_modulus;
+  const double depth = std::max(std::cos(equivalent) - arc.cos_entry, 0.0);
+  return modulus * std::pow(rim_radius_m * depth, n);
+}
+
+double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m) {
+  const double strength = soil.cohesion_pa + normal_pa * std::tan(soil.friction_angle_rad);
+  return strength * mobilised(displacement_m, soil.shear_modulus_m);
+}
+
+double metal_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m) {
+  return normal_pa * std::tan(soil.soil_metal_friction_angle_rad) *
+         mobilised(displacement_m, soil.shear_modulus_m);
+}
+
+ShearStrength shear_strength(const SoilParams& soil) {
+  return {soil.cohesion_pa, std::tan(soil.friction_angle_rad),
+          std::tan(soil.soil_metal_friction_angle_rad), soil.shear_modulus_m};
+}
+
+SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel, int handedness,
+                       double normal_pa, double tangential_displacement_m,
+                       double lateral_displacement_m) {
+  const double jt = tangential_displacement_m, jy = lateral_displacement_m;
+  const double soil_strength = strength.cohesion_pa + normal_pa * strength.tan_friction;
+  const double K = strength.shear_modulus_m;
+  if (!wheel.bladed) {
+    // Isotropic: the soil's strength along the displacement's own direction.
+    const double length = std::hypot(jt, jy);
+    if (length <= 0.0) return {};
+    const double tau = soil_strength * mobilised(length, K);
+    return {tau * jt / length, tau * jy / length};
+  }
+  const double h = handedness < 0 ? -1.0 : 1.0;
+  const double sin_i = std::sin(wheel.blade_inclination_rad);
+  const double cos_i = std::cos(wheel.blade_inclination_rad);
+  const double along_t = h * sin_i, along_y = cos_i;     // b, along the blade
+  const double across_t = cos_i, across_y = -h * sin_i;  // n_b, across it
+  const double across = soil_strength * mobilised(jt * across_t + jy * across_y, K);
+  const double along =
+      normal_pa * strength.tan_metal_friction * mobilised(jt * along_t + jy * along_y, K);
+  return {across * across_t + along * along_t, across * across_y + along * along_y};
+}
+
+SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,
+                       double normal_pa, double tangential_displacement_m,
+                       double lateral_displacement_m) {
+  return rim_shear(shear_strength(soil), wheel, handedness, normal_pa, tangential_displacement_m,
+                   lateral_displacement_m);
+}
+
+double steady_shear_displacement_m(const ContactArc& arc, double shear_radius_m, double slip,
+                                   double theta_rad) {
+  const double travel_per_radian =
+      slip >= 0.0 ? shear_radius_m * (1.0 - slip) : shear_radius_m / (1.0 + slip);
+  return shear_radius_m * (arc.entry_rad - theta_rad) -
+         travel_per_radian * (std::sin(arc.entry_rad) - std::sin(theta_rad));
+}
+
+PlanarForces steady_wheel_forces(const SoilParams& soil, const WheelGeometry& wheel,
+                                 double sinkage_m, double slip) {
+  PlanarForces forces;
+  const double r = wheel.rim_radius_m, rs = wheel.shear_radius_m(), b = wheel.width_m;
+  const ContactArc arc = contact_arc(soil, r, sinkage_m, slip);
+  const double span = arc.entry_rad - arc.exit_rad;
+  if (span <= 0.0) return forces;
+  const int samples = wheel.arc_samples;
+  const double step = span / samples;
+  const int handedness = static_cast<int>(wheel.handedness);
+  const ShearStrength strength = shear_strength(soil);
+  for (int k = 0; k < samples; ++k) {
+    const double theta = arc.entry_rad - (k + 0.5) * step;
+    const double sigma = normal_stress_pa(soil, arc, r, b, theta);
+    const double j = steady_shear_displacement_m(arc, rs, slip, theta);
+    const SurfaceShear tau = rim_shear(strength, wheel, handedness, sigma, j, 0.0);
+    const double area = step * b;
+    forces.drawbar_pull_n +=
+        (tau.tangential_pa * rs * std::cos(theta) - sigma * r * std::sin(theta)) * area;
+    forces.vertical_load_n +=
+        (sigma * r * std::cos(theta) + tau.tangential_pa * rs * std::sin(theta)) * area;
+    forces.lateral_n += tau.lateral_pa * rs * area;
+    forces.driving_torque_nm += tau.tangential_pa * rs * rs * area;
+  }
+  return forces;
+}
+
+double equilibrium_sinkage_m(const SoilParams& soil, const WheelGeometry& wheel, double load_n,
+                             double slip) {
+  if (!(load_n >= 0.0) || !std::isfinite(load_n)) {
+    std::ostringstream message;
+    message << "equilibrium_sinkage_m: the load must be a finite number >= 0 N, got " << load_n;
+    throw std::invalid_argument(message.str());
+  }
+  double low = 0.0, high = wheel.rim_radius_m;
+  if (steady_wheel_forces(soil, wheel, high, slip).vertical_load_n < load_n) {
+    std::ostringstream message;
+    message << "equilibrium_sinkage_m: soil '" << soil.name << "' cannot carry " << load_n
+            << " N on this wheel before it sinks to its axle; use a lighter load or a wider wheel";
+    throw std::invalid_argument(message.str());
+  }
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    const double middle = 0.5 * (low + high);
+    if (steady_wheel_forces(soil, wheel, middle, slip).vertical_load_n < load_n) {
+      low = middle;
+    } else {
+      high = middle;
+    }
+  }
+  return 0.5 * (low + high);
+}
+
+double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double sinkage_m) {
+  const double z = std::clamp(sinkage_m, 0.0, rim_radius_m);
+  if (z <= 0.0) return 0.0;
+  const double passive =
+      std::pow(std::tan(std::numbers::pi / 4.0 + soil.friction_angle_rad / 2.0), 2);
+  const double weight_density = soil.bulk_density_kgpm3 * soil.gravity_mps2;
+  constexpr int kSamples = 16;
+  const double step = z / kSamples;
+  double force = 0.0;
+  for (int k = 0; k < kSamples; ++k) {
+    const double depth = (k + 0.5) * step;  // below the surface
+    const double from_center = rim_radius_m - z + depth;
+    const double chord =
+        2.0 * std::sqrt(std::max(rim_radius_m * rim_radius_m - from_center * from_center, 0.0));
+    const double pressure =
+        weight_density * depth * passive + 2.0 * soil.cohesion_pa * std::sqrt(passive);
+    force += pressure * chord * step;
+  }
+  return force;
+}
+
+}  // namespace marsokhod::sim::soil

@@ -1,0 +1,108 @@
+// The Wong–Reece stress distribution under a rigid wheel (J. Y. Wong and A. R. Reece, "Prediction
+// of rigid wheel performance based on the analysis of soil–wheel stresses", J. Terramechanics 4,
+// 1967), pure functions of the soil, the wheel and its state.
+//
+// Motion frame: x the wheel's rolling direction, y its axle, z up; θ measured at the wheel's centre
+// from straight down, positive ahead. The rim touches the soil over θ2 ≤ θ ≤ θ1:
+//   entry angle            θ1 = acos(1 − z / r)                        (z the sinkage, r the rim)
+//   exit angle             θ2 ∈ [−θ1, 0]: 0 behind a rolling wheel (its rut, no rebound in dry
+//                          sand), −θ1 under a wheel that sank straight down (from the grid)
+//   max. normal stress     θm = (c1 + c2·s)·(θ1 + θ2): Wong–Reece's (c1 + c2·s)·θ1 for θ2 = 0; for
+//                          θ2 = −θ1 it is 0 and σ is symmetric, Bekker's plate pressure under
+//                          every point of the rim (our generalisation, so a still wheel is not
+//                          pushed backward)
+//   normal stress          σ(θ) = (k_c/b + k_φ)·r^n·(cos θ* − cos θ1)^n,
+//                          θ* = θ for θ ≥ θm, θ* = θ1 − (θ − θ2)(θ1 − θm)/(θm − θ2) behind θm
+//   sinkage exponent       n = n0 + n1·|s|                             (Ding et al. 2011)
+//   shear                  τ = (c + σ tan φ)(1 − e^(−j/K))             (Janosi–Hanamoto)
+// with the shear displacement j of the blade tips (radius r_s = r + blade height) against the soil.
+// Forces on the wheel per sample of width Δb and angle Δθ:
+//   F_x = (τ_t r_s cos θ − σ r sin θ) Δθ Δb,  F_z = (σ r cos θ + τ_t r_s sin θ) Δθ Δb,
+//   F_y = τ_y r_s Δθ Δb,                       torque on the wheel about its axle −τ_t r_s² Δθ Δb.
+//
+// Slip s = (r_s ω − v) / max(|r_s ω|, |v|): Wong's slip 1 − v/(r_s ω) when driving, his skid
+// r_s ω / v − 1 when braked; regularised below 1 cm/s so that it is defined at rest. It enters only
+// through n and θm; the shear itself comes from the displacement j (wheel_soil.hpp).
+#pragma once
+
+#include "sim/soil/soil_params.hpp"
+
+namespace marsokhod::sim::soil {
+
+// Below this speed the slip's denominator is held, so that s is continuous at rest.
+inline constexpr double kSlipSpeedFloorMps = 0.01;
+
+double regularised_slip(double rim_speed_mps, double travel_speed_mps);
+
+struct ContactArc {
+  double entry_rad = 0.0;         // θ1
+  double cos_entry = 1.0;         // cos θ1 = 1 − z/r
+  double max_stress_rad = 0.0;    // θm
+  double exit_rad = 0.0;          // θ2
+  double sinkage_exponent = 1.0;  // n
+};
+
+// The arc of a rim of radius rim_radius_m sunk sinkage_m (clamped to [0, r]) at slip s, the soil
+// behind it reaching up to exit_rad (clamped to [−θ1, 0]).
+ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinkage_m, double slip,
+                       double exit_rad = 0.0);
+
+// σ(θ) in Pa; 0 outside the arc. width_m is the wheel's full width b (Bekker's k_c/b).
+double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,
+                        double width_m, double theta_rad);
+
+// Signed Janosi–Hanamoto shear of soil on soil and of soil on metal, for a signed displacement.
+double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m);
+double metal_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m);
+
+// The shear stress on the rim in the surface's own axes (t along the rim's rolling direction at
+// the bottom, y along the axle), for the displacement (j_t, j_y) of the soil's pull on the wheel.
+// Smooth rim: the soil's strength along the displacement. Bladed rim, blade b = (h sin i, cos i)
+// and its normal n_b = (cos i, −h sin i) in (t, y), h = ±1 the handedness in the motion frame:
+// across the blade τ_n = soil_shear(j·n_b), along it τ_b = metal_shear(j·b); τ = τ_n n_b + τ_b b.
+struct SurfaceShear {
+  double tangential_pa = 0.0;
+  double lateral_pa = 0.0;
+};
+// The soil's shear constants, their tangents taken once (a wheel's contact keeps one).
+struct ShearStrength {
+  double cohesion_pa = 0.0;
+  double tan_friction = 0.0;        // tan φ
+  double tan_metal_friction = 0.0;  // tan δ
+  double shear_modulus_m = 0.01;    // K
+};
+ShearStrength shear_strength(const SoilParams& soil);
+SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel, int handedness,
+                       double normal_pa, double tangential_displacement_m,
+                       double lateral_displacement_m);
+SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,
+                       double normal_pa, double tangential_displacement_m,
+                       double lateral_displacement_m);
+
+// Steady-state longitudinal displacement at θ for slip s (Wong–Reece):
+//   j(θ) = r_s (θ1 − θ) − (v/ω)(sin θ1 − sin θ),  v/ω = r_s (1 − s) for s ≥ 0, r_s / (1 + s) below.
+double steady_shear_displacement_m(const ContactArc& arc, double shear_radius_m, double slip,
+                                   double theta_rad);
+
+// Sums of a wheel at steady slip s (no lateral slip), integrated by the midpoint rule over
+// wheel.arc_samples samples of the arc, in the motion frame.
+struct PlanarForces {
+  double drawbar_pull_n = 0.0;     // F_x
+  double vertical_load_n = 0.0;    // F_z, the load the soil carries
+  double lateral_n = 0.0;          // F_y (from inclined blades)
+  double driving_torque_nm = 0.0;  // the torque the soil resists the wheel's turning with
+};
+PlanarForces steady_wheel_forces(const SoilParams& soil, const WheelGeometry& wheel,
+                                 double sinkage_m, double slip);
+
+// The sinkage at which the steady wheel carries load_n at slip s (bisection). Throws
+// std::invalid_argument for a negative load or one the soil cannot carry above the axle.
+double equilibrium_sinkage_m(const SoilParams& soil, const WheelGeometry& wheel, double load_n,
+                             double slip);
+
+// The sidewall's bulldozing resistance: Rankine's passive earth pressure
+//   p(d) = ρ g d N_φ + 2 c √N_φ,  N_φ = tan²(45° + φ/2),
+// over the wheel's submerged side face (a circular segment of depth z), in N.
+double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double sinkage_m);
+
+}  // namespace marsokhod::sim::soil

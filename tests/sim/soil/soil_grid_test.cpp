@@ -1,0 +1,165 @@
+#include "sim/soil/soil_grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+#include "../../support/invalid_argument.hpp"
+
+namespace marsokhod::sim::soil {
+namespace {
+
+constexpr double kCellM = 0.01;
+
+GridSpec small_grid() { return {-0.5, -0.3, kCellM, 100, 60}; }
+
+double flat(double, double) { return 0.0; }
+
+// Σ(surface − initial)·cell², the soil the grid gained.
+double net_volume_m3(const SoilGrid& grid) {
+  double volume = 0.0;
+  for (int iy = 0; iy < grid.spec().cells_y; ++iy) {
+    for (int ix = 0; ix < grid.spec().cells_x; ++ix) {
+      volume += (grid.cell_surface_m(ix, iy) - grid.cell_initial_m(ix, iy)) * kCellM * kCellM;
+    }
+  }
+  return volume;
+}
+
+void expect_balanced(const SoilGrid& grid) {
+  const SoilVolumes& v = grid.volumes();
+  EXPECT_NEAR(net_volume_m3(grid), v.fill_m3 - v.cut_m3, 1e-12);
+  EXPECT_NEAR(v.cut_m3 - v.fill_m3, v.compacted_m3, 1e-12);
+}
+
+// A wheel pressed 2 cm into flat sand: the cells under it go down to its rim, their plastic
+// sinkage is the cut, half of the cut is compacted (displaced_fraction 0.5) and half raises the
+// patch's rim; the undisturbed level under the wheel stays where it was.
+TEST(SoilGrid, PressYieldsToTheRimAndConservesVolume) {
+  SoilGrid grid(small_grid(), dry_sand(), flat);
+  const Cylinder wheel{{0.0, 0.0, 0.115 - 0.02}, {0.0, 1.0, 0.0}, 0.115, 0.15};
+  const Footprint footprint = grid.press(wheel);
+  ASSERT_FALSE(footprint.contact_cells.empty());
+  // The cell just below the wheel's lowest point (its centre 0.5 cm off): rim ≈ −0.02 m.
+  const double rim = 0.095 - std::sqrt(0.115 * 0.115 - 0.005 * 0.005);
+  EXPECT_NEAR(grid.cell_surface_m(50, 30), rim, 1e-12);
+  EXPECT_NEAR(grid.cell_sinkage_m(50, 30), -rim, 1e-12);
+  EXPECT_NEAR(grid.cell_compaction_m(50, 30), -0.5 * rim, 1e-12);
+  EXPECT_NEAR(grid.undisturbed_m(0.005, 0.005), 0.0, 1e-12);
+  EXPECT_GT(grid.volumes().compacted_m3, 0.0);
+  EXPECT_NEAR(grid.volumes().fill_m3, grid.volumes().compacted_m3, 1e-15);
+  expect_balanced(grid);
+  // The rim: beside the wheel the surface rose.
+  double beside = 0.0;
+  for (int iy = 36; iy <= 39; ++iy) beside = std::max(beside, grid.cell_surface_m(50, iy));
+  EXPECT_GT(beside, 0.0);
+  // Pressing again at the same depth only re-presses the soil the rim received under the wheel's
+  // arc, less each time, until nothing moves (the bank has left the wheel's way).
+  double previous_cut = grid.volumes().cut_m3;
+  for (int i = 0; i < 5; ++i) {
+    const double cut_before = grid.volumes().cut_m3;
+    grid.press(wheel);
+    const double cut = grid.volumes().cut_m3 - cut_before;
+    EXPECT_LE(cut, previous_cut);
+    previous_cut = cut;
+  }
+  EXPECT_EQ(previous_cut, 0.0);
+  expect_balanced(grid);
+}
+
+// A 10 cm column of sand slumps until no two neighbours differ by more than cell·tan(repose),
+// with every cubic millimetre accounted for.
+TEST(SoilGrid, SlopesRelaxToTheAngleOfRepose) {
+  Footprint window;
+  window.min_x = window.max_x = 50;
+  window.min_y = window.max_y = 30;
+  // A pile made by excavation: 10 cm on one cell.
+  SoilGrid piled(small_grid(), dry_sand(), [](double x, double y) {
+    return (std::abs(x - 0.005) < 0.004 && std::abs(y - 0.005) < 0.004) ? 0.1 : 0.0;
+  });
+  const double before = net_volume_m3(piled);
+  piled.relax(window, 20, 500);
+  const double limit = kCellM * std::tan(dry_sand().repose_angle_rad);
+  for (int iy = 10; iy < 50; ++iy) {
+    for (int ix = 30; ix < 70; ++ix) {
+      EXPECT_LE(std::abs(piled.cell_surface_m(ix + 1, iy) - piled.cell_surface_m(ix, iy)),
+                limit + 1e-9);
+      EXPECT_LE(std::abs(piled.cell_surface_m(ix, iy + 1) - piled.cell_surface_m(ix, iy)),
+                limit + 1e-9);
+    }
+  }
+  EXPECT_NEAR(net_volume_m3(piled), before, 1e-15);
+  EXPECT_GT(piled.volumes().relaxed_m3, 0.0);
+  EXPECT_EQ(piled.volumes().cut_m3, piled.volumes().fill_m3);
+  EXPECT_LT(piled.cell_surface_m(50, 30), 0.1);
+}
+
+// A slope gentler than the angle of repose stays as it is.
+TEST(SoilGrid, SlopesBelowReposeStay) {
+  const double slope = std::tan(20.0 * std::numbers::pi / 180.0);
+  SoilGrid grid(small_grid(), dry_sand(), [&](double x, double) { return x * slope; });
+  Footprint window{{}, 10, 10, 90, 50};
+  grid.relax(window, 0, 10);
+  EXPECT_EQ(grid.volumes().relaxed_m3, 0.0);
+  const Vec3 normal = grid.normal(0.1, 0.0, 0.23);
+  EXPECT_NEAR(normal[0], -std::sin(20.0 * std::numbers::pi / 180.0), 1e-9);
+  EXPECT_NEAR(normal[1], 0.0, 1e-12);
+  EXPECT_NEAR(grid.surface_m(0.123, 0.05), 0.123 * slope, 1e-12);
+}
+
+// Excavation carries soil from under the wheel to behind it: cut = fill, nothing compacted.
+TEST(SoilGrid, ExcavationMovesSoilBehindTheWheel) {
+  SoilGrid grid(small_grid(), dry_sand(), flat);
+  const Cylinder wheel{{0.0, 0.0, 0.105}, {0.0, 1.0, 0.0}, 0.115, 0.15};
+  const Footprint footprint = grid.press(wheel);
+  ASSERT_FALSE(footprint.contact_cells.empty());
+  grid.excavate(footprint, wheel, {1.0, 0.0, 0.0}, 0.125, 1e-5);
+  EXPECT_NEAR(grid.volumes().excavated_m3, 1e-5, 1e-18);
+  EXPECT_LT(grid.surface_m(0.005, 0.005), 0.0);
+  EXPECT_GT(grid.cell_surface_m(50 - 13, 30), 0.0);  // 12.5 cm behind
+  expect_balanced(grid);
+}
+
+TEST(SoilGrid, SamePressesGiveIdenticalBits) {
+  const auto run = [] {
+    SoilGrid grid(small_grid(), dry_sand(), flat);
+    for (int i = 0; i < 200; ++i) {
+      const Cylinder wheel{{-0.2 + 0.002 * i, 0.01 * std::sin(i * 0.1), 0.1 - 0.0001 * i},
+                           {0.0, 1.0, 0.0},
+                           0.115,
+                           0.15};
+      const Footprint footprint = grid.press(wheel);
+      grid.excavate(footprint, wheel, {1.0, 0.0, 0.0}, 0.125, 1e-7);
+      grid.relax(footprint, 3, 4);
+    }
+    std::vector<double> surface;
+    for (int iy = 0; iy < 60; ++iy) {
+      for (int ix = 0; ix < 100; ++ix) surface.push_back(grid.cell_surface_m(ix, iy));
+    }
+    return surface;
+  };
+  const std::vector<double> first = run(), second = run();
+  EXPECT_EQ(std::memcmp(first.data(), second.data(), first.size() * sizeof(double)), 0);
+}
+
+TEST(SoilGrid, RejectsBadSpecs) {
+  GridSpec spec = small_grid();
+  spec.cell_m = 0.5;
+  test_support::expect_invalid_argument([&] { SoilGrid grid(spec, dry_sand(), flat); },
+                                        {"soil grid", "cell_m", "0.5"});
+  spec = small_grid();
+  spec.cells_x = 1;
+  test_support::expect_invalid_argument([&] { SoilGrid grid(spec, dry_sand(), flat); },
+                                        {"cells_x", "got 1"});
+  test_support::expect_invalid_argument(
+      [&] {
+        SoilGrid grid(small_grid(), dry_sand(), [](double, double) { return test_support::kNaN; });
+      },
+      {"initial surface", "finite"});
+}
+
+}  // namespace
+}  // namespace marsokhod::sim::soil
