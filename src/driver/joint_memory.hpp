@@ -17,7 +17,9 @@
 //   no reversal since (dir and stp as kept):  Δ = (−1)^dir · T;
 //   else stp (the last reversal) must lie on the arc enc_kept → enc, A = (stp − enc_kept) mod
 //   65536 pulses before it and L = T − A after it:  Δ = s·A + (−1)^dir · L,
-// so p̄ = p̄_kept + Δ·2π/115000, and (4.1) applied at the reversal point and at the end gives p.
+// so p̄ = p̄_kept + Δ·2π/115000, and (4.1) applied at the reversal point and at the end gives p
+// — until the driver has taken up the gaps where the joints stand (startup.hpp): (4.1) cannot
+// see a joint that swung through its gap when µ8's switch stopped its shaft abruptly.
 // The sign s of the pulses before the last reversal: with dir changed (one reversal, or an odd
 // number) the kept direction (−1)^dir_kept; with dir as kept but stp moved (two or more) the
 // direction of the duty d the shaft was left running at — the others are chatter: a shaft that

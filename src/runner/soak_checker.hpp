@@ -17,7 +17,7 @@
 //                   (5.3) in the sessions of seeds 1–20, tests/runner/session_restart_test).
 //                   A restarted driver inherits that: a joint it found outside is held to
 //                   the excess it had then (it must not grow) and must be back within the
-//                   tolerance by recovery_s after start-up; the largest such excess is reported
+//                   tolerance by recovery_s (3 s) after start-up; the largest such excess is reported
 //                   (max_restart_joint_excess_rad). A joint whose encoder lost pulses since the
 //                   first driver started is judged by the driver's own estimate p instead: the
 //                   driver cannot know the truth then (lost pulses are not detected —
@@ -88,9 +88,14 @@ struct CheckerLimits {
   double duty_ceiling = 1.0;          // the "≤ 1" of duty-bound (tests force violations with less)
   double joint_tolerance_rad = 0.01;  // the "inside (5.3) by ≤ 0.01 rad"
   int supply_cycles = 3;              // "reported within 3 cycles"
-  // How soon a restarted driver brings back a joint the brown-out left outside (5.3): the
-  // sessions of seeds 1–20 need 0.25 s.
-  double recovery_s = 1.0;
+  // How soon after its start-up a restarted driver must have brought back a joint the brown-out
+  // left outside (5.3). Start-up leaves each shaft at the negative end of its gap; bringing a
+  // joint back across a positive bound first takes the shaft across the whole gap ((1 + u)·b =
+  // 0.28 rad for the rear) and then the joint by its excess, both from rest under (4.16): the
+  // soak's worst case, a rear joint 0.27 rad below p7_min, took 1.05 s for the gap and 0.55 s
+  // for the joint. 3 s allows that with room; the sessions of seeds 1–20 (0.08 rad, no gap to
+  // cross) need 0.25 s.
+  double recovery_s = 3.0;
 };
 
 // One cycle as the checker sees it.

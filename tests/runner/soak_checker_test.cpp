@@ -229,10 +229,10 @@ TEST_F(CheckerTest, ARestartedDriverMustStartUpAfresh) {
   EXPECT_EQ(v.front().invariant, Invariant::kRestart);
 }
 
-TEST_F(CheckerTest, AJointARestartFindsOutsideMustNotGoFurtherAndComeBackWithinASecond) {
+TEST_F(CheckerTest, AJointARestartFindsOutsideMustNotGoFurtherAndComeBackWithinThreeSeconds) {
   // While the driver was down the front joint ran on and fell through its gap to −2.6, 0.05 rad
   // beyond p6_min. The restarted driver is held to that: no further than 0.05 + 0.01 rad, and
-  // within the tolerance again by recovery_s = 1 s after its start-up.
+  // within the tolerance again by recovery_s = 3 s after its start-up.
   settle();
   down_cycle();
   view_.joint_angle_rad = {-2.6, 1.5};
@@ -248,8 +248,8 @@ TEST_F(CheckerTest, AJointARestartFindsOutsideMustNotGoFurtherAndComeBackWithinA
   view_.joint_angle_rad = {-2.6, 1.5};
   status_.mode = driver::DriverMode::kDriving;
   const std::int64_t started_us = time_us_;
-  while (time_us_ <= started_us + 1'000'000) ASSERT_FALSE(has(cycle({}), Invariant::kJointBounds));
-  EXPECT_TRUE(has(cycle({}), Invariant::kJointBounds));  // not back after a second
+  while (time_us_ <= started_us + 3'000'000) ASSERT_FALSE(has(cycle({}), Invariant::kJointBounds));
+  EXPECT_TRUE(has(cycle({}), Invariant::kJointBounds));  // not back after 3 s
 }
 
 TEST_F(CheckerTest, AJointBroughtBackAfterARestartIsHeldToTheBoundsAgain) {
