@@ -1,5 +1,6 @@
 // The cost of one physics step: RoverPhysics::step (joint modes, then mj_step) against a bare
-// mj_step on the same generated model, and on sand and a heightfield. The counter
+// mj_step on the same generated model, and on sand, a heightfield and the soft sand of
+// sim/soil (terrain 3: Wong–Reece forces per wheel on a deformable grid). The counter
 // real_time_factor is simulated seconds per wall-clock second.
 #include <benchmark/benchmark.h>
 
@@ -28,6 +29,7 @@ MotorDrive cruise() {
 TerrainSpec terrain_for(int kind) {
   TerrainSpec terrain;
   if (kind == 1) terrain.ground = sand();
+  if (kind == 3) terrain.ground = soft_sand();
   if (kind == 2) {
     // Gentle dunes on a 64 × 64 grid over 8 m × 8 m, up to 0.2 m.
     terrain.kind = TerrainKind::kHeightfield;
@@ -56,7 +58,7 @@ void BM_RoverPhysicsStep(benchmark::State& state) {
   for (auto _ : state) physics.step();
   set_real_time_factor(state);
 }
-BENCHMARK(BM_RoverPhysicsStep)->ArgName("terrain")->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_RoverPhysicsStep)->ArgName("terrain")->Arg(0)->Arg(1)->Arg(2)->Arg(3);
 
 // The same model stepped by MuJoCo alone: the wheels' servos and the joints' locks set once, as
 // RoverPhysics sets them, the rover placed on the ground.
