@@ -5,12 +5,13 @@
 
 #include "core/adaptation/backlash.hpp"
 #include "core/checks/checks.hpp"
+#include "core/protocol/messages.hpp"
 #include "core/tracking/counter.hpp"
 
 namespace marsokhod::driver {
 namespace {
 
-constexpr double kDeadManPeriod_s = 0.262144;  // µ8's Timer 1: 65536·64/16 MHz (chapter 3.3)
+constexpr double kDeadManPeriod_s = protocol::kDeadManTickUs * 1e-6;  // µ8's unit of dog
 constexpr double kSupplyHeadroom = 1.25;       // no-load speed scales with U/Ū; U ≤ 1.25·Ū
 constexpr std::uint32_t kHalfCounterRange = 32768;
 

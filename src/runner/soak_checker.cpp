@@ -8,7 +8,7 @@
 namespace marsokhod::runner {
 namespace {
 
-constexpr std::int64_t kDeadManTickUs = 262144;  // µ8's dog unit, 0.262144 s
+using protocol::kDeadManTickUs;
 
 std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
   char text[160];

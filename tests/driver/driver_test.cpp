@@ -454,7 +454,12 @@ TEST_F(RestartDriverTest, ContinuesFromTheKeptJointsWithoutProcedure43) {
     EXPECT_NEAR(s.motors[j].shaft_position_rad, kept.joints[k].shaft_rad + moved, 2 * kOneCount) << j;
     EXPECT_DOUBLE_EQ(s.motors[j].position_rad, s.motors[j].shaft_position_rad) << j;
   }
-  EXPECT_NE(before.motors[kFrontJoint].shaft_position_rad, 0.0);
+  // What was kept is what the first driver's last status showed.
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::size_t j = k == 0 ? kFrontJoint : kRearJoint;
+    EXPECT_EQ(kept.joints[k].shaft_rad, before.motors[j].shaft_position_rad) << j;
+    EXPECT_EQ(kept.joints[k].duty, before.motors[j].duty) << j;
+  }
   EXPECT_NE(restarted.joint_memory(), kept);  // its own now, the shafts' new readings in it
   // The gait goes on from there inside (5.3) — once the driver has pulled back what the take-up
   // moved out: the scripted shafts have no joint to meet and took their p past p7_min.

@@ -63,7 +63,7 @@ void describe_measurement(const MeasurementResponse& m, const BusContext& c, Fra
 void describe_dead_man(const DeadManRequest& m, FrameDescription& d) {
   d.raw = {{"dog", m.dog, {}}};
   // µ8 stops the motors 0.2621·dog s after the last 0x80 (chapter 3.3); dog = 0 disables it.
-  d.physical = {{"timeout", 0.262144 * m.dog, "s", 3, false}};
+  d.physical = {{"timeout", static_cast<double>(kDeadManTickUs) * 1e-6 * m.dog, "s", 3, false}};
 }
 
 }  // namespace

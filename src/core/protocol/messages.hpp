@@ -69,6 +69,8 @@ struct MeasurementResponse {
 };
 
 // 0x82, 1 byte: dog (0 disables; otherwise stop after 0.2621·dog s without a 0x80).
+// µ8's unit of dog: Timer 1 at 16 MHz/64 overflows every 65536·64/16 MHz = 0.262144 s.
+inline constexpr std::int64_t kDeadManTickUs = 262144;
 struct DeadManRequest {
   std::uint8_t dog = 0;
   friend bool operator==(const DeadManRequest&, const DeadManRequest&) = default;

@@ -29,7 +29,7 @@
 
 namespace marsokhod::sim {
 
-inline constexpr SimTimeNs kDeadManPeriodNs = 262'144'000;  // 65536·64/16 MHz
+inline constexpr SimTimeNs kDeadManPeriodNs = protocol::kDeadManTickUs * 1000;
 inline constexpr SimTimeNs kLcdIdleAfterNs = kNanosecondsPerSecond;
 inline constexpr const char* kLcdIdleText = "Pleasure in the job puts perfection in the work.";
 
