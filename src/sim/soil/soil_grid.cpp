@@ -136,6 +136,12 @@ void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
 
 Footprint SoilGrid::press(const Cylinder& wheel) {
   Footprint footprint;
+  press(wheel, footprint);
+  return footprint;
+}
+
+void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
+  footprint.contact_cells.clear();
   // The cylinder's shadow: half its width along the axle, its radius across.
   const auto reach = [&](double axle_component) {
     return std::abs(axle_component) * 0.5 * wheel.width_m +
@@ -152,6 +158,7 @@ Footprint SoilGrid::press(const Cylinder& wheel) {
   footprint.max_y = cell_of(wheel.center_m[1] + reach_y, spec_.origin_y_m, spec_.cells_y);
   const double area = spec_.cell_m * spec_.cell_m;
   double displaced_m3 = 0.0;
+  // Raster order: the contact cells come out ascending.
   for (int iy = footprint.min_y; iy <= footprint.max_y; ++iy) {
     for (int ix = footprint.min_x; ix <= footprint.max_x; ++ix) {
       const std::size_t i = index(ix, iy);
@@ -171,32 +178,37 @@ Footprint SoilGrid::press(const Cylinder& wheel) {
       displaced_m3 += soil_.displaced_fraction * cut * area;
     }
   }
-  std::sort(footprint.contact_cells.begin(), footprint.contact_cells.end());
   shrink_to_contact(footprint);
-  // The patch's rim: the 8-neighbours of contact cells that the wheel does not touch.
-  std::vector<int> rim_cells;
+  // The patch's rim: the 8-neighbours of contact cells that the wheel does not touch, marked, then
+  // collected in raster order over the contact box grown by one cell (ascending, as a sort would).
   for (int cell : footprint.contact_cells) {
     const int cx = cell % spec_.cells_x, cy = cell / spec_.cells_x;
     for (int iy = std::max(cy - 1, 0); iy <= std::min(cy + 1, spec_.cells_y - 1); ++iy) {
       for (int ix = std::max(cx - 1, 0); ix <= std::min(cx + 1, spec_.cells_x - 1); ++ix) {
         const std::size_t i = index(ix, iy);
-        if (mark_[i] != 0) continue;
-        mark_[i] = kRim;
-        rim_cells.push_back(static_cast<int>(i));
+        if (mark_[i] == 0) mark_[i] = kRim;
       }
     }
   }
-  std::sort(rim_cells.begin(), rim_cells.end());
-  for (int cell : footprint.contact_cells) mark_[static_cast<std::size_t>(cell)] = 0;
-  for (int cell : rim_cells) mark_[static_cast<std::size_t>(cell)] = 0;
-  if (displaced_m3 > 0.0) {
-    if (rim_cells.empty()) {  // nowhere to go (the grid's edge): compacted after all
-      volumes_.compacted_m3 += displaced_m3;
-    } else {
-      spread(rim_cells, displaced_m3);
+  rim_cells_.clear();
+  if (!footprint.contact_cells.empty()) {
+    for (int iy = std::max(footprint.min_y - 1, 0);
+         iy <= std::min(footprint.max_y + 1, spec_.cells_y - 1); ++iy) {
+      for (int ix = std::max(footprint.min_x - 1, 0);
+           ix <= std::min(footprint.max_x + 1, spec_.cells_x - 1); ++ix) {
+        const std::size_t i = index(ix, iy);
+        if (mark_[i] == kRim) rim_cells_.push_back(static_cast<int>(i));
+        mark_[i] = 0;
+      }
     }
   }
-  return footprint;
+  if (displaced_m3 > 0.0) {
+    if (rim_cells_.empty()) {  // nowhere to go (the grid's edge): compacted after all
+      volumes_.compacted_m3 += displaced_m3;
+    } else {
+      spread(rim_cells_, displaced_m3);
+    }
+  }
 }
 
 // The box of the contact cells (empty when none), where relax() then works.
@@ -247,9 +259,8 @@ void SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, const
   spread(targets, volume_m3);
 }
 
-bool SoilGrid::relax_pair(std::size_t first, std::size_t second, double limit_m) {
-  const double difference = surface_[first] - surface_[second];
-  if (std::abs(difference) <= limit_m) return false;
+void SoilGrid::move_downhill(std::size_t first, std::size_t second, double difference,
+                             double limit_m) {
   const double moved = 0.5 * (std::abs(difference) - limit_m);
   const std::size_t higher = difference > 0.0 ? first : second;
   const std::size_t lower = difference > 0.0 ? second : first;
@@ -259,7 +270,6 @@ bool SoilGrid::relax_pair(std::size_t first, std::size_t second, double limit_m)
   volumes_.cut_m3 += volume;
   volumes_.fill_m3 += volume;
   volumes_.relaxed_m3 += volume;
-  return true;
 }
 
 void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {

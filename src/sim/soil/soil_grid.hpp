@@ -20,6 +20,7 @@
 //   Σ(surface − initial surface)·cell² = fill − cut,   cut − fill = compacted_m3.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -86,8 +87,10 @@ class SoilGrid {
   void set_cell_surface_m(int ix, int iy, double level_m);  // for tests and scenario set-up
   const SoilVolumes& volumes() const { return volumes_; }
 
-  // Cuts the cells under the cylinder down to its rim; returns the contact patch.
+  // Cuts the cells under the cylinder down to its rim; returns the contact patch (the second form
+  // fills `footprint`, keeping its list's capacity from step to step).
   Footprint press(const Cylinder& wheel);
+  void press(const Cylinder& wheel, Footprint& footprint);
   // Takes volume_m3 evenly from the footprint's contact cells and drops it on the cells
   // behind_m behind the centre (along −toward, horizontal), across the wheel's width.
   void excavate(const Footprint& footprint, const Cylinder& wheel, const Vec3& toward,
@@ -107,12 +110,19 @@ class SoilGrid {
   double rim_below_m(const Cylinder& wheel, double x_m, double y_m) const;
   void spread(const std::vector<int>& cells, double volume_m3);
   void shrink_to_contact(Footprint& footprint) const;
-  bool relax_pair(std::size_t higher_or_lower, std::size_t other, double limit_m);
+  bool relax_pair(std::size_t first, std::size_t second, double limit_m) {
+    const double difference = surface_[first] - surface_[second];
+    if (std::abs(difference) <= limit_m) return false;
+    move_downhill(first, second, difference, limit_m);
+    return true;
+  }
+  void move_downhill(std::size_t first, std::size_t second, double difference, double limit_m);
 
   GridSpec spec_;
   SoilParams soil_;
   std::vector<double> surface_, sinkage_, compaction_, initial_;
   std::vector<unsigned char> mark_;  // scratch: 1 contact, 2 rim
+  std::vector<int> rim_cells_;       // scratch of press()
   double repose_step_m_ = 0.0;       // the steepest difference of neighbours, cell·tan(repose)
   // (A tiny tolerance in it stops endless passes over differences rounding keeps at the limit.)
   SoilVolumes volumes_;

@@ -104,8 +104,10 @@ class WheelSoilContact {
   SoilParams soil_;
   WheelGeometry wheel_;
   ShearStrength strength_;
+  BladeAxes blades_;
+  double modulus_pa_ = 0.0;  // k_c/b + k_φ
   int direction_ = 1;
-  std::vector<double> shear_t_, shear_y_, scratch_;
+  std::vector<double> shear_t_, shear_y_, scratch_, cosines_;
 };
 
 }  // namespace marsokhod::sim::soil

@@ -37,18 +37,28 @@ ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinka
   return arc;
 }
 
+double equivalent_angle_rad(const ContactArc& arc, double theta_rad) {
+  if (theta_rad < arc.max_stress_rad && arc.max_stress_rad > arc.exit_rad) {
+    return arc.entry_rad - (theta_rad - arc.exit_rad) * (arc.entry_rad - arc.max_stress_rad) /
+                               (arc.max_stress_rad - arc.exit_rad);
+  }
+  return theta_rad;
+}
+
+double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc, double rim_radius_m,
+                                 double cos_equivalent) {
+  const double depth = rim_radius_m * std::max(cos_equivalent - arc.cos_entry, 0.0);
+  if (depth <= 0.0) return 0.0;
+  const double n = arc.sinkage_exponent;
+  return modulus_pa * (n == 1.0 ? depth : std::exp(n * std::log(depth)));
+}
+
 double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,
                         double width_m, double theta_rad) {
   if (theta_rad > arc.entry_rad || theta_rad < arc.exit_rad || arc.entry_rad <= 0.0) return 0.0;
-  double equivalent = theta_rad;  // θ*: behind θm the front's stresses, compressed onto [θ2, θm]
-  if (theta_rad < arc.max_stress_rad && arc.max_stress_rad > arc.exit_rad) {
-    equivalent = arc.entry_rad - (theta_rad - arc.exit_rad) * (arc.entry_rad - arc.max_stress_rad) /
-                                     (arc.max_stress_rad - arc.exit_rad);
-  }
-  const double n = arc.sinkage_exponent;
   const double modulus = soil.cohesive_modulus / width_m + soil.frictional_modulus;
-  const double depth = std::max(std::cos(equivalent) - arc.cos_entry, 0.0);
-  return modulus * std::pow(rim_radius_m * depth, n);
+  return normal_stress_from_cos_pa(modulus, arc, rim_radius_m,
+                                   std::cos(equivalent_angle_rad(arc, theta_rad)));
 }
 
 double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m) {
@@ -66,13 +76,25 @@ ShearStrength shear_strength(const SoilParams& soil) {
           std::tan(soil.soil_metal_friction_angle_rad), soil.shear_modulus_m};
 }
 
+BladeAxes blade_axes(const WheelGeometry& wheel) {
+  return {wheel.bladed, std::sin(wheel.blade_inclination_rad),
+          std::cos(wheel.blade_inclination_rad)};
+}
+
 SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel, int handedness,
+                       double normal_pa, double tangential_displacement_m,
+                       double lateral_displacement_m) {
+  return rim_shear(strength, blade_axes(wheel), handedness, normal_pa, tangential_displacement_m,
+                   lateral_displacement_m);
+}
+
+SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades, int handedness,
                        double normal_pa, double tangential_displacement_m,
                        double lateral_displacement_m) {
   const double jt = tangential_displacement_m, jy = lateral_displacement_m;
   const double soil_strength = strength.cohesion_pa + normal_pa * strength.tan_friction;
   const double K = strength.shear_modulus_m;
-  if (!wheel.bladed) {
+  if (!blades.bladed) {
     // Isotropic: the soil's strength along the displacement's own direction.
     const double length = std::hypot(jt, jy);
     if (length <= 0.0) return {};
@@ -80,8 +102,7 @@ SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel
     return {tau * jt / length, tau * jy / length};
   }
   const double h = handedness < 0 ? -1.0 : 1.0;
-  const double sin_i = std::sin(wheel.blade_inclination_rad);
-  const double cos_i = std::cos(wheel.blade_inclination_rad);
+  const double sin_i = blades.sin_inclination, cos_i = blades.cos_inclination;
   const double along_t = h * sin_i, along_y = cos_i;     // b, along the blade
   const double across_t = cos_i, across_y = -h * sin_i;  // n_b, across it
   const double across = soil_strength * mobilised(jt * across_t + jy * across_y, K);

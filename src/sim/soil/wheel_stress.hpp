@@ -51,6 +51,16 @@ ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinka
 double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,
                         double width_m, double theta_rad);
 
+// θ* of normal_stress_pa at θ within the arc: θ ahead of θm, the front's profile compressed onto
+// [θ2, θm] behind it. It is linear in θ on either side of θm, so samples evenly spaced in θ have
+// evenly spaced θ* there (wheel_soil.cpp steps their cosines by rotation).
+double equivalent_angle_rad(const ContactArc& arc, double theta_rad);
+
+// σ from cos θ*: (k_c/b + k_φ)·(r·max(cos θ* − cos θ1, 0))^n, the power as exp(n·ln x) (within a
+// few units in the last place of std::pow, at a third of its cost; n = 1 exactly is x itself).
+double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc, double rim_radius_m,
+                                 double cos_equivalent);
+
 // Signed Janosi–Hanamoto shear of soil on soil and of soil on metal, for a signed displacement.
 double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m);
 double metal_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m);
@@ -73,6 +83,16 @@ struct ShearStrength {
 };
 ShearStrength shear_strength(const SoilParams& soil);
 SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel, int handedness,
+                       double normal_pa, double tangential_displacement_m,
+                       double lateral_displacement_m);
+// The blade's direction cosines, taken once per wheel: sin i and cos i of its inclination.
+struct BladeAxes {
+  bool bladed = true;
+  double sin_inclination = 0.0;
+  double cos_inclination = 1.0;
+};
+BladeAxes blade_axes(const WheelGeometry& wheel);
+SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades, int handedness,
                        double normal_pa, double tangential_displacement_m,
                        double lateral_displacement_m);
 SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,
