@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -109,7 +110,7 @@ class SoilGrid {
                   double y_m) const;
   double rim_below_m(const Cylinder& wheel, double x_m, double y_m) const;
   void spread(const std::vector<int>& cells, double volume_m3);
-  void shrink_to_contact(Footprint& footprint) const;
+  void collect_rim(const Footprint& footprint, int box_x, int box_y, int width, int words);
   bool relax_pair(std::size_t first, std::size_t second, double limit_m) {
     const double difference = surface_[first] - surface_[second];
     if (std::abs(difference) <= limit_m) return false;
@@ -121,8 +122,11 @@ class SoilGrid {
   GridSpec spec_;
   SoilParams soil_;
   std::vector<double> surface_, sinkage_, compaction_, initial_;
-  std::vector<unsigned char> mark_;  // scratch: 1 contact, 2 rim
-  std::vector<int> rim_cells_;       // scratch of press()
+  // Scratch of press(): the contact cells as bits over their search box (one cell of border),
+  // row-major in 64-bit words; the rim cells.
+  std::vector<std::uint64_t> contact_bits_;
+  std::vector<int> rim_cells_;
+  double inverse_unloading_ = 0.1;  // a little above 1 / unloading_stiffness_ratio
   double repose_step_m_ = 0.0;       // the steepest difference of neighbours, cell·tan(repose)
   // (A tiny tolerance in it stops endless passes over differences rounding keeps at the limit.)
   SoilVolumes volumes_;

@@ -41,8 +41,11 @@ WheelSoilContact::WheelSoilContact(SoilParams soil, WheelGeometry wheel)
   const auto size = static_cast<std::size_t>(wheel_.lanes * wheel_.arc_samples);
   shear_t_.assign(size, 0.0);
   shear_y_.assign(size, 0.0);
-  scratch_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  scratch_.assign(2 * static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   cosines_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  sample_sin_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  sample_cos_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  sample_sigma_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
 }
 
 double WheelSoilContact::lane_offset_m(int lane) const {
@@ -89,26 +92,29 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
       cosines_[static_cast<std::size_t>(k)] = angle.cos();
     }
   }
-  for (std::vector<double>* field : {&shear_t_, &shear_y_}) {
-    double* j = field->data() + lane * samples;
-    std::copy(j, j + samples, scratch_.begin());
-    const bool tangential = field == &shear_t_;
-    for (int k = 0; k < samples; ++k) {
-      const double from = k - shift;  // sample coordinate; the entry (j = 0) is at −0.5
-      double value = 0.0;
-      if (from > 0.0) {
-        const int below = static_cast<int>(from);
-        const double weight = from - below;
-        value = (1.0 - weight) * scratch_[static_cast<std::size_t>(below)] +
-                weight * scratch_[static_cast<std::size_t>(std::min(below + 1, samples - 1))];
-      } else if (from > -0.5) {
-        value = scratch_[0] * (from + 0.5) / 0.5;
-      }
-      const double rate = tangential ? rs * spin_radps -
-                                           travel_mps * cosines_[static_cast<std::size_t>(k)]
-                                     : -lateral_mps;
-      j[k] = value + rate * dt_s;
+  // Both components move with the rim: the same interpolation for each.
+  double* jt = shear_t_.data() + lane * samples;
+  double* jy = shear_y_.data() + lane * samples;
+  std::copy(jt, jt + samples, scratch_.begin());
+  std::copy(jy, jy + samples, scratch_.begin() + samples);
+  const double* old_t = scratch_.data();
+  const double* old_y = scratch_.data() + samples;
+  const double lateral_step = -lateral_mps * dt_s;
+  for (int k = 0; k < samples; ++k) {
+    const double from = k - shift;  // sample coordinate; the entry (j = 0) is at −0.5
+    double value_t = 0.0, value_y = 0.0;
+    if (from > 0.0) {
+      const int below = static_cast<int>(from);
+      const int above = std::min(below + 1, samples - 1);
+      const double weight = from - below;
+      value_t = (1.0 - weight) * old_t[below] + weight * old_t[above];
+      value_y = (1.0 - weight) * old_y[below] + weight * old_y[above];
+    } else if (from > -0.5) {
+      value_t = old_t[0] * (from + 0.5) / 0.5;
+      value_y = old_y[0] * (from + 0.5) / 0.5;
     }
+    jt[k] = value_t + (rs * spin_radps - travel_mps * cosines_[static_cast<std::size_t>(k)]) * dt_s;
+    jy[k] = value_y + lateral_step;
   }
 }
 
@@ -119,7 +125,7 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
 // outward × tangent = −d·y, outward × y = d·(cos θ·x + sin θ·z), d = ±1 the motion frame's
 // direction (x × y = d·z): the moments are summed as scalars too, the frame applied once.
 void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const Frame& frame,
-                                         WheelWrench& wrench) const {
+                                         WheelWrench& wrench) {
   const int samples = wheel_.arc_samples;
   const double r = wheel_.rim_radius_m, rs = wheel_.shear_radius_m();
   const double step = (arc.entry_rad - arc.exit_rad) / samples;
@@ -129,19 +135,33 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
       compressed ? step * (arc.entry_rad - arc.max_stress_rad) / (arc.max_stress_rad - arc.exit_rad)
                  : 0.0;
   const std::size_t base = static_cast<std::size_t>(lane * samples);
-  double fx = 0.0, fy = 0.0, fz = 0.0, mx = 0.0, my = 0.0, mz = 0.0;
-  AngleSteps angle(arc.entry_rad - 0.5 * step, -step);
-  std::optional<AngleSteps> rear;  // θ* behind θm
-  for (int k = 0; k < samples; ++k, angle.advance()) {
-    const double theta = arc.entry_rad - (k + 0.5) * step;
-    const double s = angle.sin(), c = angle.cos();
-    double cos_equivalent = c;
-    if (compressed && theta < arc.max_stress_rad) {
-      if (!rear) rear.emplace(equivalent_angle_rad(arc, theta), rear_rate);
-      cos_equivalent = rear->cos();
-      rear->advance();
+  // First the angles and the normal stresses (independent from sample to sample, so their
+  // exponentials overlap), then the shear and the sums.
+  double* sines = sample_sin_.data();
+  double* cosines = sample_cos_.data();
+  double* sigmas = sample_sigma_.data();
+  {
+    AngleSteps angle(arc.entry_rad - 0.5 * step, -step);
+    std::optional<AngleSteps> rear;  // θ* behind θm
+    for (int k = 0; k < samples; ++k, angle.advance()) {
+      const double theta = arc.entry_rad - (k + 0.5) * step;
+      sines[k] = angle.sin();
+      cosines[k] = angle.cos();
+      double cos_equivalent = angle.cos();
+      if (compressed && theta < arc.max_stress_rad) {
+        if (!rear) rear.emplace(equivalent_angle_rad(arc, theta), rear_rate);
+        cos_equivalent = rear->cos();
+        rear->advance();
+      }
+      sigmas[k] = cos_equivalent;
     }
-    const double sigma = normal_stress_from_cos_pa(modulus_pa_, arc, r, cos_equivalent);
+    for (int k = 0; k < samples; ++k) {
+      sigmas[k] = normal_stress_from_cos_pa(modulus_pa_, arc, r, sigmas[k]);
+    }
+  }
+  double fx = 0.0, fy = 0.0, fz = 0.0, mx = 0.0, my = 0.0, mz = 0.0;
+  for (int k = 0; k < samples; ++k) {
+    const double s = sines[k], c = cosines[k], sigma = sigmas[k];
     const SurfaceShear tau = rim_shear(strength_, blades_, frame.handedness, sigma,
                                        shear_t_[base + k], shear_y_[base + k]);
     const double normal = sigma * r * area, tangential = tau.tangential_pa * rs * area;

@@ -95,7 +95,7 @@ class WheelSoilContact {
   void advect_lane(int lane, const ContactArc& arc, double spin_radps, double travel_mps,
                    double lateral_mps, double dt_s);
   void add_lane_stresses(int lane, const ContactArc& arc, const Frame& frame,
-                         WheelWrench& wrench) const;
+                         WheelWrench& wrench);
   void add_damping(double contact_area_m2, const Frame& frame, const Vec3& velocity_mps,
                    WheelWrench& wrench) const;
   void add_sidewall(std::span<const double> lane_sinkage_m, const Frame& frame,
@@ -108,6 +108,8 @@ class WheelSoilContact {
   double modulus_pa_ = 0.0;  // k_c/b + k_φ
   int direction_ = 1;
   std::vector<double> shear_t_, shear_y_, scratch_, cosines_;
+  // Per arc sample of the lane being summed: sin θ, cos θ, σ (scratch of add_lane_stresses).
+  std::vector<double> sample_sin_, sample_cos_, sample_sigma_;
 };
 
 }  // namespace marsokhod::sim::soil

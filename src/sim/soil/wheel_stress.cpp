@@ -9,11 +9,7 @@
 namespace marsokhod::sim::soil {
 namespace {
 
-// Janosi–Hanamoto's mobilised share 1 − e^(−|j|/K), signed as j.
-double mobilised(double displacement_m, double shear_modulus_m) {
-  const double share = 1.0 - std::exp(-std::abs(displacement_m) / shear_modulus_m);
-  return displacement_m < 0.0 ? -share : share;
-}
+using detail::mobilised;
 
 }  // namespace
 
@@ -45,14 +41,6 @@ double equivalent_angle_rad(const ContactArc& arc, double theta_rad) {
   return theta_rad;
 }
 
-double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc, double rim_radius_m,
-                                 double cos_equivalent) {
-  const double depth = rim_radius_m * std::max(cos_equivalent - arc.cos_entry, 0.0);
-  if (depth <= 0.0) return 0.0;
-  const double n = arc.sinkage_exponent;
-  return modulus_pa * (n == 1.0 ? depth : std::exp(n * std::log(depth)));
-}
-
 double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,
                         double width_m, double theta_rad) {
   if (theta_rad > arc.entry_rad || theta_rad < arc.exit_rad || arc.entry_rad <= 0.0) return 0.0;
@@ -63,17 +51,18 @@ double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double ri
 
 double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m) {
   const double strength = soil.cohesion_pa + normal_pa * std::tan(soil.friction_angle_rad);
-  return strength * mobilised(displacement_m, soil.shear_modulus_m);
+  return strength * mobilised(displacement_m, 1.0 / soil.shear_modulus_m);
 }
 
 double metal_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m) {
   return normal_pa * std::tan(soil.soil_metal_friction_angle_rad) *
-         mobilised(displacement_m, soil.shear_modulus_m);
+         mobilised(displacement_m, 1.0 / soil.shear_modulus_m);
 }
 
 ShearStrength shear_strength(const SoilParams& soil) {
   return {soil.cohesion_pa, std::tan(soil.friction_angle_rad),
-          std::tan(soil.soil_metal_friction_angle_rad), soil.shear_modulus_m};
+          std::tan(soil.soil_metal_friction_angle_rad), soil.shear_modulus_m,
+          1.0 / soil.shear_modulus_m};
 }
 
 BladeAxes blade_axes(const WheelGeometry& wheel) {
@@ -86,29 +75,6 @@ SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel
                        double lateral_displacement_m) {
   return rim_shear(strength, blade_axes(wheel), handedness, normal_pa, tangential_displacement_m,
                    lateral_displacement_m);
-}
-
-SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades, int handedness,
-                       double normal_pa, double tangential_displacement_m,
-                       double lateral_displacement_m) {
-  const double jt = tangential_displacement_m, jy = lateral_displacement_m;
-  const double soil_strength = strength.cohesion_pa + normal_pa * strength.tan_friction;
-  const double K = strength.shear_modulus_m;
-  if (!blades.bladed) {
-    // Isotropic: the soil's strength along the displacement's own direction.
-    const double length = std::hypot(jt, jy);
-    if (length <= 0.0) return {};
-    const double tau = soil_strength * mobilised(length, K);
-    return {tau * jt / length, tau * jy / length};
-  }
-  const double h = handedness < 0 ? -1.0 : 1.0;
-  const double sin_i = blades.sin_inclination, cos_i = blades.cos_inclination;
-  const double along_t = h * sin_i, along_y = cos_i;     // b, along the blade
-  const double across_t = cos_i, across_y = -h * sin_i;  // n_b, across it
-  const double across = soil_strength * mobilised(jt * across_t + jy * across_y, K);
-  const double along =
-      normal_pa * strength.tan_metal_friction * mobilised(jt * along_t + jy * along_y, K);
-  return {across * across_t + along * along_t, across * across_y + along * along_y};
 }
 
 SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,

@@ -25,6 +25,9 @@
 // through n and θm; the shear itself comes from the displacement j (wheel_soil.hpp).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "sim/soil/soil_params.hpp"
 
 namespace marsokhod::sim::soil {
@@ -58,8 +61,8 @@ double equivalent_angle_rad(const ContactArc& arc, double theta_rad);
 
 // σ from cos θ*: (k_c/b + k_φ)·(r·max(cos θ* − cos θ1, 0))^n, the power as exp(n·ln x) (within a
 // few units in the last place of std::pow, at a third of its cost; n = 1 exactly is x itself).
-double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc, double rim_radius_m,
-                                 double cos_equivalent);
+inline double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc,
+                                        double rim_radius_m, double cos_equivalent);
 
 // Signed Janosi–Hanamoto shear of soil on soil and of soil on metal, for a signed displacement.
 double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m);
@@ -80,6 +83,7 @@ struct ShearStrength {
   double tan_friction = 0.0;        // tan φ
   double tan_metal_friction = 0.0;  // tan δ
   double shear_modulus_m = 0.01;    // K
+  double inverse_shear_modulus_per_m = 100.0;  // 1/K, so that the hot loop multiplies
 };
 ShearStrength shear_strength(const SoilParams& soil);
 SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel, int handedness,
@@ -92,9 +96,10 @@ struct BladeAxes {
   double cos_inclination = 1.0;
 };
 BladeAxes blade_axes(const WheelGeometry& wheel);
-SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades, int handedness,
-                       double normal_pa, double tangential_displacement_m,
-                       double lateral_displacement_m);
+// (Inline below: it runs for every sample of every lane of every wheel.)
+inline SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades,
+                              int handedness, double normal_pa, double tangential_displacement_m,
+                              double lateral_displacement_m);
 SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,
                        double normal_pa, double tangential_displacement_m,
                        double lateral_displacement_m);
@@ -124,5 +129,46 @@ double equilibrium_sinkage_m(const SoilParams& soil, const WheelGeometry& wheel,
 //   p(d) = ρ g d N_φ + 2 c √N_φ,  N_φ = tan²(45° + φ/2),
 // over the wheel's submerged side face (a circular segment of depth z), in N.
 double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double sinkage_m);
+
+namespace detail {
+
+// Janosi–Hanamoto's mobilised share 1 − e^(−|j|/K), signed as j.
+inline double mobilised(double displacement_m, double inverse_shear_modulus_per_m) {
+  const double share = 1.0 - std::exp(-std::abs(displacement_m) * inverse_shear_modulus_per_m);
+  return displacement_m < 0.0 ? -share : share;
+}
+
+}  // namespace detail
+
+inline double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc,
+                                        double rim_radius_m, double cos_equivalent) {
+  const double depth = rim_radius_m * std::max(cos_equivalent - arc.cos_entry, 0.0);
+  if (depth <= 0.0) return 0.0;
+  const double n = arc.sinkage_exponent;
+  return modulus_pa * (n == 1.0 ? depth : std::exp(n * std::log(depth)));
+}
+
+inline SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades,
+                              int handedness, double normal_pa, double tangential_displacement_m,
+                              double lateral_displacement_m) {
+  const double jt = tangential_displacement_m, jy = lateral_displacement_m;
+  const double soil_strength = strength.cohesion_pa + normal_pa * strength.tan_friction;
+  const double inverse_K = strength.inverse_shear_modulus_per_m;
+  if (!blades.bladed) {
+    // Isotropic: the soil's strength along the displacement's own direction.
+    const double length = std::hypot(jt, jy);
+    if (length <= 0.0) return {};
+    const double tau = soil_strength * detail::mobilised(length, inverse_K);
+    return {tau * jt / length, tau * jy / length};
+  }
+  const double h = handedness < 0 ? -1.0 : 1.0;
+  const double sin_i = blades.sin_inclination, cos_i = blades.cos_inclination;
+  const double along_t = h * sin_i, along_y = cos_i;     // b, along the blade
+  const double across_t = cos_i, across_y = -h * sin_i;  // n_b, across it
+  const double across = soil_strength * detail::mobilised(jt * across_t + jy * across_y, inverse_K);
+  const double along = normal_pa * strength.tan_metal_friction *
+                       detail::mobilised(jt * along_t + jy * along_y, inverse_K);
+  return {across * across_t + along * along_t, across * across_y + along * along_y};
+}
 
 }  // namespace marsokhod::sim::soil
