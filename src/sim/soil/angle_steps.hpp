@@ -18,6 +18,12 @@ class AngleSteps {
         cos_step_(std::cos(step_rad)),
         sin_step_(std::sin(step_rad)) {}
 
+  // θ0 = δ: the multiples δ, 2δ, 3δ, … from one sincos.
+  static AngleSteps multiples(double step_rad) {
+    const double c = std::cos(step_rad), s = std::sin(step_rad);
+    return AngleSteps(c, s, c, s);
+  }
+
   double cos() const { return cos_; }
   double sin() const { return sin_; }
   void advance() {
@@ -27,6 +33,9 @@ class AngleSteps {
   }
 
  private:
+  AngleSteps(double cos_start, double sin_start, double cos_step, double sin_step)
+      : cos_(cos_start), sin_(sin_start), cos_step_(cos_step), sin_step_(sin_step) {}
+
   double cos_, sin_, cos_step_, sin_step_;
 };
 

@@ -53,7 +53,7 @@ double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, con
     return height(sin_theta, cos_theta) - bottom - kTouchM;
   };
   double previous_theta = 0.0, previous = clearance(0.0, 1.0);
-  AngleSteps angle(-entry / kExitSteps, -entry / kExitSteps);
+  AngleSteps angle = AngleSteps::multiples(-entry / kExitSteps);
   for (int k = 1; k <= kExitSteps; ++k, angle.advance()) {
     const double theta = -entry * k / kExitSteps;
     const double current = clearance(angle.sin(), angle.cos());

@@ -17,6 +17,32 @@ constexpr double kTouchM = 1e-4;
 
 void fail(const std::string& what) { throw std::invalid_argument("soil grid: " + what); }
 
+// The height of a cylinder's underside above (x, y), or +∞ where the vertical line misses it; the
+// cylinder's own numbers taken once for the many cells under it.
+class Underside {
+ public:
+  explicit Underside(const Cylinder& wheel)
+      : wheel_(wheel),
+        horizontal_(wheel.axle[0] * wheel.axle[0] + wheel.axle[1] * wheel.axle[1]),
+        radius2_(wheel.radius_m * wheel.radius_m) {}
+
+  double height_m(double x_m, double y_m) const {
+    const double ax = wheel_.axle[0], ay = wheel_.axle[1];
+    if (horizontal_ < 1e-12) return kMiss;
+    const double dx = x_m - wheel_.center_m[0], dy = y_m - wheel_.center_m[1];
+    const double along = (dx * ax + dy * ay) / horizontal_;
+    if (std::abs(along) > 0.5 * wheel_.width_m) return kMiss;
+    const double ex = dx - along * ax, ey = dy - along * ay;
+    const double across2 = ex * ex + ey * ey;
+    if (across2 >= radius2_) return kMiss;
+    return wheel_.center_m[2] + along * wheel_.axle[2] - std::sqrt(radius2_ - across2);
+  }
+
+ private:
+  const Cylinder& wheel_;
+  double horizontal_, radius2_;
+};
+
 }  // namespace
 
 void validate(const GridSpec& spec) {
@@ -113,21 +139,6 @@ void SoilGrid::set_cell_surface_m(int ix, int iy, double level_m) {
   initial_[index(ix, iy)] = level_m;
 }
 
-// The height of the cylinder's underside above (x, y), or +∞ where the vertical line misses it.
-double SoilGrid::rim_below_m(const Cylinder& wheel, double x_m, double y_m) const {
-  const double ax = wheel.axle[0], ay = wheel.axle[1];
-  const double horizontal = ax * ax + ay * ay;
-  if (horizontal < 1e-12) return kMiss;
-  const double dx = x_m - wheel.center_m[0], dy = y_m - wheel.center_m[1];
-  const double along = (dx * ax + dy * ay) / horizontal;
-  if (std::abs(along) > 0.5 * wheel.width_m) return kMiss;
-  const double ex = dx - along * ax, ey = dy - along * ay;
-  const double across2 = ex * ex + ey * ey;
-  if (across2 >= wheel.radius_m * wheel.radius_m) return kMiss;
-  return wheel.center_m[2] + along * wheel.axle[2] -
-         std::sqrt(wheel.radius_m * wheel.radius_m - across2);
-}
-
 void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
   const double depth =
       volume_m3 / (static_cast<double>(cells.size()) * spec_.cell_m * spec_.cell_m);
@@ -185,11 +196,12 @@ void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
   int contact_min_y = max_y + 1, contact_max_y = min_y - 1;
   const double area = spec_.cell_m * spec_.cell_m;
   double displaced_m3 = 0.0;
+  const Underside underside(wheel);
   // Raster order: the contact cells come out ascending.
   for (int iy = min_y; iy <= max_y; ++iy) {
     for (int ix = min_x; ix <= max_x; ++ix) {
       const std::size_t i = index(ix, iy);
-      const double rim = rim_below_m(wheel, cell_x_m(ix), cell_y_m(iy));
+      const double rim = underside.height_m(cell_x_m(ix), cell_y_m(iy));
       // Within the elastic rebound of its plastic sinkage the cell still carries the rim
       // (surface + max(a, b) > rim exactly when both sums are: the rebound only when needed).
       if (rim > surface_[i] + kTouchM &&
@@ -323,9 +335,22 @@ void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {
   const auto width = static_cast<std::size_t>(spec_.cells_x);
   for (int pass = 0; pass < passes; ++pass) {
     bool moved = false;
-    // In raster order, each cell with its right then its lower neighbour.
+    // In raster order, each cell with its right then its lower neighbour. A row none of whose
+    // pairs is steeper than the limit (checked as it comes up, after the rows above moved soil)
+    // would move nothing and is passed over.
     for (int iy = y0; iy <= y1; ++iy) {
       const std::size_t row = index(0, iy);
+      const double* level = surface_.data() + row;
+      double steepest = 0.0;
+      for (int ix = x0; ix < x1; ++ix) {
+        steepest = std::max(steepest, std::abs(level[ix] - level[ix + 1]));
+      }
+      if (iy < y1) {
+        for (int ix = x0; ix <= x1; ++ix) {
+          steepest = std::max(steepest, std::abs(level[ix] - level[ix + spec_.cells_x]));
+        }
+      }
+      if (steepest <= limit) continue;
       for (int ix = x0; ix <= x1; ++ix) {
         const std::size_t i = row + static_cast<std::size_t>(ix);
         if (ix < x1) moved |= relax_pair(i, i + 1, limit);

@@ -108,7 +108,6 @@ class SoilGrid {
   double cell_y_m(int iy) const { return spec_.origin_y_m + (iy + 0.5) * spec_.cell_m; }
   double bilinear(const std::vector<double>& field, const std::vector<double>* added, double x_m,
                   double y_m) const;
-  double rim_below_m(const Cylinder& wheel, double x_m, double y_m) const;
   void spread(const std::vector<int>& cells, double volume_m3);
   void collect_rim(const Footprint& footprint, int box_x, int box_y, int width, int words);
   bool relax_pair(std::size_t first, std::size_t second, double limit_m) {

@@ -38,6 +38,7 @@ WheelSoilContact::WheelSoilContact(SoilParams soil, WheelGeometry wheel)
   strength_ = shear_strength(soil_);
   blades_ = blade_axes(wheel_);
   modulus_pa_ = soil_.cohesive_modulus / wheel_.width_m + soil_.frictional_modulus;
+  passive_ = passive_earth_coefficient(soil_);
   const auto size = static_cast<std::size_t>(wheel_.lanes * wheel_.arc_samples);
   shear_t_.assign(size, 0.0);
   shear_y_.assign(size, 0.0);
@@ -46,6 +47,8 @@ WheelSoilContact::WheelSoilContact(SoilParams soil, WheelGeometry wheel)
   sample_sin_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   sample_cos_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   sample_sigma_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  share_across_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  share_along_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
 }
 
 double WheelSoilContact::lane_offset_m(int lane) const {
@@ -77,14 +80,18 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
   const double spacing = 1.0 / samples;
   // The slip rate at the middle of the path since the last step, at least half a sample
   // upstream: the linear interpolation's steady state then sums it by the midpoint rule. That
-  // middle lies at (k + ½)/2 samples from the entry up to sample k = ⌈reach − ½⌉, at k + ½ − reach/2
+  // middle lies (k + ½)/2 samples from the entry for the first ⌈reach − ½⌉ samples, k + ½ − reach/2
   // beyond (reach = max(shift, 1)): θ is linear in k on either side, so its cosines come by
   // rotation (angle_steps.hpp).
   const double reach = std::max(shift, 1.0);
   const int near = std::clamp(static_cast<int>(std::ceil(reach - 0.5)), 0, samples);
-  if (near > 0) {
+  if (near == 1) {  // the usual case, one sample: its cosine alone
+    cosines_[0] = std::cos(arc.entry_rad - 0.25 * spacing * span);
+  } else if (near > 1) {
     AngleSteps angle(arc.entry_rad - 0.25 * spacing * span, -0.5 * spacing * span);
-    for (int k = 0; k < near; ++k, angle.advance()) cosines_[static_cast<std::size_t>(k)] = angle.cos();
+    for (int k = 0; k < near; ++k, angle.advance()) {
+      cosines_[static_cast<std::size_t>(k)] = angle.cos();
+    }
   }
   if (near < samples) {
     AngleSteps angle(arc.entry_rad - (near + 0.5 - 0.5 * reach) * spacing * span, -spacing * span);
@@ -113,7 +120,8 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
       value_t = old_t[0] * (from + 0.5) / 0.5;
       value_y = old_y[0] * (from + 0.5) / 0.5;
     }
-    jt[k] = value_t + (rs * spin_radps - travel_mps * cosines_[static_cast<std::size_t>(k)]) * dt_s;
+    const double cosine = cosines_[static_cast<std::size_t>(k)];
+    jt[k] = value_t + (rs * spin_radps - travel_mps * cosine) * dt_s;
     jy[k] = value_y + lateral_step;
   }
 }
@@ -159,11 +167,25 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
       sigmas[k] = normal_stress_from_cos_pa(modulus_pa_, arc, r, sigmas[k]);
     }
   }
+  // Then the blades' mobilised shares (the exponentials again in a loop of their own).
+  const BladeFrame blade = blade_frame(blades_, frame.handedness);
+  double* across = share_across_.data();
+  double* along = share_along_.data();
+  if (blades_.bladed) {
+    const double inverse_K = strength_.inverse_shear_modulus_per_m;
+    for (int k = 0; k < samples; ++k) {
+      const double jt = shear_t_[base + k], jy = shear_y_[base + k];
+      across[k] = detail::mobilised(blade.across_displacement_m(jt, jy), inverse_K);
+      along[k] = detail::mobilised(blade.along_displacement_m(jt, jy), inverse_K);
+    }
+  }
   double fx = 0.0, fy = 0.0, fz = 0.0, mx = 0.0, my = 0.0, mz = 0.0;
   for (int k = 0; k < samples; ++k) {
     const double s = sines[k], c = cosines[k], sigma = sigmas[k];
-    const SurfaceShear tau = rim_shear(strength_, blades_, frame.handedness, sigma,
-                                       shear_t_[base + k], shear_y_[base + k]);
+    const SurfaceShear tau =
+        blades_.bladed ? bladed_shear(strength_, blade, sigma, across[k], along[k])
+                       : rim_shear(strength_, blades_, frame.handedness, sigma,
+                                   shear_t_[base + k], shear_y_[base + k]);
     const double normal = sigma * r * area, tangential = tau.tangential_pa * rs * area;
     const double lateral = tau.lateral_pa * rs * area;
     fx += tangential * c - normal * s;
@@ -206,7 +228,7 @@ void WheelSoilContact::add_sidewall(std::span<const double> lane_sinkage_m, cons
   // side.
   const int leading = mean > 0.0 ? 0 : wheel_.lanes - 1;
   const double sinkage = lane_sinkage_m[static_cast<std::size_t>(leading)];
-  const double force = sidewall_resistance_n(soil_, wheel_.rim_radius_m, sinkage) *
+  const double force = sidewall_resistance_n(soil_, passive_, wheel_.rim_radius_m, sinkage) *
                        mobilised(mean, soil_.shear_modulus_m);
   const double side = mean > 0.0 ? -0.5 : 0.5;
   const Vec3 at = (side * wheel_.width_m) * frame.axle -

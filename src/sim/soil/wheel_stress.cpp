@@ -144,11 +144,18 @@ double equilibrium_sinkage_m(const SoilParams& soil, const WheelGeometry& wheel,
   return 0.5 * (low + high);
 }
 
+double passive_earth_coefficient(const SoilParams& soil) {
+  return std::pow(std::tan(std::numbers::pi / 4.0 + soil.friction_angle_rad / 2.0), 2);
+}
+
 double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double sinkage_m) {
+  return sidewall_resistance_n(soil, passive_earth_coefficient(soil), rim_radius_m, sinkage_m);
+}
+
+double sidewall_resistance_n(const SoilParams& soil, double passive, double rim_radius_m,
+                             double sinkage_m) {
   const double z = std::clamp(sinkage_m, 0.0, rim_radius_m);
   if (z <= 0.0) return 0.0;
-  const double passive =
-      std::pow(std::tan(std::numbers::pi / 4.0 + soil.friction_angle_rad / 2.0), 2);
   const double weight_density = soil.bulk_density_kgpm3 * soil.gravity_mps2;
   constexpr int kSamples = 16;
   const double step = z / kSamples;

@@ -96,7 +96,19 @@ struct BladeAxes {
   double cos_inclination = 1.0;
 };
 BladeAxes blade_axes(const WheelGeometry& wheel);
-// (Inline below: it runs for every sample of every lane of every wheel.)
+// The same in two parts, so that a loop can take the exponentials of all its samples first: the
+// blade's axes in (t, y) for a handedness — b = (h sin i, cos i) along it, n_b = (cos i, −h sin i)
+// across it — and the bladed rim's shear from the signed mobilised shares across and along it,
+// 1 − e^(−|j·n_b|/K) and 1 − e^(−|j·b|/K) signed as their displacements.
+struct BladeFrame {
+  double along_t = 0.0, along_y = 1.0, across_t = 1.0, across_y = 0.0;
+  double across_displacement_m(double jt, double jy) const { return jt * across_t + jy * across_y; }
+  double along_displacement_m(double jt, double jy) const { return jt * along_t + jy * along_y; }
+};
+inline BladeFrame blade_frame(const BladeAxes& blades, int handedness);
+inline SurfaceShear bladed_shear(const ShearStrength& strength, const BladeFrame& blade,
+                                 double normal_pa, double across_share, double along_share);
+// (Inline below: they run for every sample of every lane of every wheel.)
 inline SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades,
                               int handedness, double normal_pa, double tangential_displacement_m,
                               double lateral_displacement_m);
@@ -129,6 +141,10 @@ double equilibrium_sinkage_m(const SoilParams& soil, const WheelGeometry& wheel,
 //   p(d) = ρ g d N_φ + 2 c √N_φ,  N_φ = tan²(45° + φ/2),
 // over the wheel's submerged side face (a circular segment of depth z), in N.
 double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double sinkage_m);
+// N_φ, and the same resistance with it taken once.
+double passive_earth_coefficient(const SoilParams& soil);
+double sidewall_resistance_n(const SoilParams& soil, double passive_coefficient,
+                             double rim_radius_m, double sinkage_m);
 
 namespace detail {
 
@@ -148,6 +164,21 @@ inline double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc
   return modulus_pa * (n == 1.0 ? depth : std::exp(n * std::log(depth)));
 }
 
+inline BladeFrame blade_frame(const BladeAxes& blades, int handedness) {
+  const double h = handedness < 0 ? -1.0 : 1.0;
+  const double sin_i = blades.sin_inclination, cos_i = blades.cos_inclination;
+  return {h * sin_i, cos_i, cos_i, -h * sin_i};
+}
+
+inline SurfaceShear bladed_shear(const ShearStrength& strength, const BladeFrame& blade,
+                                 double normal_pa, double across_share, double along_share) {
+  const double soil_strength = strength.cohesion_pa + normal_pa * strength.tan_friction;
+  const double across = soil_strength * across_share;
+  const double along = normal_pa * strength.tan_metal_friction * along_share;
+  return {across * blade.across_t + along * blade.along_t,
+          across * blade.across_y + along * blade.along_y};
+}
+
 inline SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades,
                               int handedness, double normal_pa, double tangential_displacement_m,
                               double lateral_displacement_m) {
@@ -161,14 +192,10 @@ inline SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& bl
     const double tau = soil_strength * detail::mobilised(length, inverse_K);
     return {tau * jt / length, tau * jy / length};
   }
-  const double h = handedness < 0 ? -1.0 : 1.0;
-  const double sin_i = blades.sin_inclination, cos_i = blades.cos_inclination;
-  const double along_t = h * sin_i, along_y = cos_i;     // b, along the blade
-  const double across_t = cos_i, across_y = -h * sin_i;  // n_b, across it
-  const double across = soil_strength * detail::mobilised(jt * across_t + jy * across_y, inverse_K);
-  const double along = normal_pa * strength.tan_metal_friction *
-                       detail::mobilised(jt * along_t + jy * along_y, inverse_K);
-  return {across * across_t + along * along_t, across * across_y + along * along_y};
+  const BladeFrame blade = blade_frame(blades, handedness);
+  return bladed_shear(strength, blade, normal_pa,
+                      detail::mobilised(blade.across_displacement_m(jt, jy), inverse_K),
+                      detail::mobilised(blade.along_displacement_m(jt, jy), inverse_K));
 }
 
 }  // namespace marsokhod::sim::soil
