@@ -88,33 +88,6 @@ SoilGrid::SoilGrid(GridSpec spec, SoilParams soil,
   inverse_unloading_ = (1.0 + 1e-12) / soil_.unloading_stiffness_ratio;  // a bound, not a value
 }
 
-double SoilGrid::bilinear(const std::vector<double>& field, const std::vector<double>* added,
-                          double x_m, double y_m) const {
-  const auto axis = [](double coordinate, int cells, int& low, int& high) {
-    const double clamped = std::clamp(coordinate, 0.0, cells - 1.0);
-    low = std::min(static_cast<int>(clamped), cells - 2);
-    high = low + 1;
-    return clamped - low;
-  };
-  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
-  const double wx = axis((x_m - spec_.origin_x_m) / spec_.cell_m - 0.5, spec_.cells_x, x0, x1);
-  const double wy = axis((y_m - spec_.origin_y_m) / spec_.cell_m - 0.5, spec_.cells_y, y0, y1);
-  const auto at = [&](int ix, int iy) {
-    const std::size_t i = index(ix, iy);
-    return field[i] + (added != nullptr ? (*added)[i] : 0.0);
-  };
-  return (1.0 - wy) * ((1.0 - wx) * at(x0, y0) + wx * at(x1, y0)) +
-         wy * ((1.0 - wx) * at(x0, y1) + wx * at(x1, y1));
-}
-
-double SoilGrid::surface_m(double x_m, double y_m) const {
-  return bilinear(surface_, nullptr, x_m, y_m);
-}
-
-double SoilGrid::undisturbed_m(double x_m, double y_m) const {
-  return bilinear(surface_, &sinkage_, x_m, y_m);
-}
-
 double SoilGrid::plastic_sinkage_m(double x_m, double y_m) const {
   return bilinear(sinkage_, nullptr, x_m, y_m);
 }

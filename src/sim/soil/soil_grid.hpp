@@ -20,6 +20,7 @@
 //   Σ(surface − initial surface)·cell² = fill − cut,   cut − fill = compacted_m3.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -71,9 +72,12 @@ class SoilGrid {
            const std::function<double(double, double)>& initial_surface_m);
 
   const GridSpec& spec() const { return spec_; }
-  // Bilinear between cell centres; beyond the grid the nearest edge cell's value.
-  double surface_m(double x_m, double y_m) const;
-  double undisturbed_m(double x_m, double y_m) const;
+  // Bilinear between cell centres; beyond the grid the nearest edge cell's value. (Inline: the
+  // contacts sample the surface many times a step.)
+  double surface_m(double x_m, double y_m) const { return bilinear(surface_, nullptr, x_m, y_m); }
+  double undisturbed_m(double x_m, double y_m) const {
+    return bilinear(surface_, &sinkage_, x_m, y_m);
+  }
   double plastic_sinkage_m(double x_m, double y_m) const;
   // How far above the soil a rim may be and still touch it: the elastic rebound of the plastic
   // sinkage, sinkage_m / unloading_stiffness_ratio, or 0.1 mm.
@@ -130,5 +134,25 @@ class SoilGrid {
   // (A tiny tolerance in it stops endless passes over differences rounding keeps at the limit.)
   SoilVolumes volumes_;
 };
+
+inline double SoilGrid::bilinear(const std::vector<double>& field,
+                                 const std::vector<double>* added, double x_m,
+                                 double y_m) const {
+  const auto axis = [](double coordinate, int cells, int& low, int& high) {
+    const double clamped = std::clamp(coordinate, 0.0, cells - 1.0);
+    low = std::min(static_cast<int>(clamped), cells - 2);
+    high = low + 1;
+    return clamped - low;
+  };
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  const double wx = axis((x_m - spec_.origin_x_m) / spec_.cell_m - 0.5, spec_.cells_x, x0, x1);
+  const double wy = axis((y_m - spec_.origin_y_m) / spec_.cell_m - 0.5, spec_.cells_y, y0, y1);
+  const auto at = [&](int ix, int iy) {
+    const std::size_t i = index(ix, iy);
+    return field[i] + (added != nullptr ? (*added)[i] : 0.0);
+  };
+  return (1.0 - wy) * ((1.0 - wx) * at(x0, y0) + wx * at(x1, y0)) +
+         wy * ((1.0 - wx) * at(x0, y1) + wx * at(x1, y1));
+}
 
 }  // namespace marsokhod::sim::soil
