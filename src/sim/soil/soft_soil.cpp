@@ -33,6 +33,11 @@ SoftSoil::SoftSoil(SoilParams soil, GridSpec grid,
   lane_exit_.resize(lanes);
 }
 
+void SoftSoil::level() {
+  grid_.level();
+  for (WheelSoilContact& contact : contacts_) contact = WheelSoilContact(soil_, contact.wheel());
+}
+
 Vec3 SoftSoil::ground_normal(const WheelKinematics& kinematics, std::size_t wheel) const {
   return grid_.normal(kinematics.center_m[0], kinematics.center_m[1],
                       2.0 * contacts_.at(wheel).wheel().rim_radius_m);

@@ -44,6 +44,9 @@ class SoftSoil {
   LaneContacts lane_contacts(std::size_t wheel, const WheelKinematics& kinematics) const;
   Vec3 ground_normal(const WheelKinematics& kinematics, std::size_t wheel) const;
 
+  // Raked level (SoilGrid::level), and every wheel's shear state cleared.
+  void level();
+
   const SoilGrid& grid() const { return grid_; }
   SoilGrid& grid() { return grid_; }
   const WheelSoilContact& contact(std::size_t wheel) const { return contacts_.at(wheel); }

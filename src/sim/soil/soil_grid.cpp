@@ -119,6 +119,13 @@ void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
   volumes_.fill_m3 += volume_m3;
 }
 
+void SoilGrid::level() {
+  surface_ = initial_;
+  std::fill(sinkage_.begin(), sinkage_.end(), 0.0);
+  std::fill(compaction_.begin(), compaction_.end(), 0.0);
+  volumes_ = SoilVolumes{};
+}
+
 Footprint SoilGrid::press(const Cylinder& wheel) {
   Footprint footprint;
   press(wheel, footprint);

@@ -90,6 +90,8 @@ class SoilGrid {
   double cell_compaction_m(int ix, int iy) const { return compaction_[index(ix, iy)]; }
   double cell_initial_m(int ix, int iy) const { return initial_[index(ix, iy)]; }
   void set_cell_surface_m(int ix, int iy, double level_m);  // for tests and scenario set-up
+  // Raked level: every cell back at its initial surface, no sinkage or compaction, the books at 0.
+  void level();
   const SoilVolumes& volumes() const { return volumes_; }
 
   // Cuts the cells under the cylinder down to its rim; returns the contact patch (the second form
