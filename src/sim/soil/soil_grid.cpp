@@ -26,7 +26,9 @@ class Underside {
         horizontal_(wheel.axle[0] * wheel.axle[0] + wheel.axle[1] * wheel.axle[1]),
         radius2_(wheel.radius_m * wheel.radius_m) {}
 
-  double height_m(double x_m, double y_m) const {
+  // +∞ also where the underside certainly lies more than a nanometre above `level_m` (no square
+  // root for the cells the rim cannot reach).
+  double height_above_m(double x_m, double y_m, double level_m) const {
     const double ax = wheel_.axle[0], ay = wheel_.axle[1];
     if (horizontal_ < 1e-12) return kMiss;
     const double dx = x_m - wheel_.center_m[0], dy = y_m - wheel_.center_m[1];
@@ -35,7 +37,10 @@ class Underside {
     const double ex = dx - along * ax, ey = dy - along * ay;
     const double across2 = ex * ex + ey * ey;
     if (across2 >= radius2_) return kMiss;
-    return wheel_.center_m[2] + along * wheel_.axle[2] - std::sqrt(radius2_ - across2);
+    const double axis = wheel_.center_m[2] + along * wheel_.axle[2];
+    const double clearance = axis - level_m - 1e-9;
+    if (clearance > 0.0 && clearance * clearance > radius2_ - across2) return kMiss;
+    return axis - std::sqrt(radius2_ - across2);
   }
 
  private:
@@ -181,7 +186,10 @@ void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
   for (int iy = min_y; iy <= max_y; ++iy) {
     for (int ix = min_x; ix <= max_x; ++ix) {
       const std::size_t i = index(ix, iy);
-      const double rim = underside.height_m(cell_x_m(ix), cell_y_m(iy));
+      // A rim above the highest level at which this cell still carries it is a miss as before.
+      const double rim = underside.height_above_m(
+          cell_x_m(ix), cell_y_m(iy),
+          surface_[i] + std::max(kTouchM, sinkage_[i] * inverse_unloading_));
       // Within the elastic rebound of its plastic sinkage the cell still carries the rim
       // (surface + max(a, b) > rim exactly when both sums are: the rebound only when needed).
       if (rim > surface_[i] + kTouchM &&
