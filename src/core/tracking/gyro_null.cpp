@@ -1,5 +1,7 @@
 #include "core/tracking/gyro_null.hpp"
 
+#include <algorithm>
+
 #include "core/checks/checks.hpp"
 
 namespace marsokhod::tracking {
@@ -13,8 +15,10 @@ GyroNullFilter::GyroNullFilter(double initial_counts, double lambda)
 double GyroNullFilter::update(double yaw_counts, bool rover_still) {
   checks::setting::require_finite(yaw_counts, "gyro reading yaw",
                                   "pass µ8's 10-bit yaw reading (0..1023)");
-  if (rover_still) {
-    null_counts_ = lambda_ * null_counts_ + (1.0 - lambda_) * yaw_counts;
+  if (rover_still && lambda_ < 1.0) {
+    still_samples_ += 1.0;
+    const double weight = std::max(1.0 - lambda_, 1.0 / still_samples_);
+    null_counts_ = (1.0 - weight) * null_counts_ + weight * yaw_counts;
   }
   return null_counts_;
 }

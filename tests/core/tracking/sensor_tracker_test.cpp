@@ -68,17 +68,19 @@ TEST(SensorTracker, TiltChannelsAlternateAndKeepTheLatest) {
 }
 
 TEST(SensorTracker, GyroNullLearnsOnlyWhileStill) {
-  // λ = 0.99. Still with yaw 507: ω3 uses y⁰ = 505: 0.0170·(505 − 507) = −0.034 rad/s, then
-  // y¹ = 0.99·505 + 0.01·507 = 505.02 and ω3 = 0.0170·(505.02 − 507) = −0.03366 next cycle.
+  // λ = 0.99. Still with yaw 507: ω3 uses y⁰ = 505: 0.0170·(505 − 507) = −0.034 rad/s. The
+  // filter starts as a mean (gyro_null.hpp): y¹ = (505 + 507)/2 = 506, and ω3 = 0.0170·(506 − 507)
+  // = −0.017 rad/s next cycle; then y² = 506 + (507 − 506)/3 = 506.333.
   SensorTracker tracker(SensorParams{}, FilterParams{});
   MeasurementResponse response = typ_response(TiltChannel::kFront);
   response.yaw = 507;
   EXPECT_NEAR(tracker.update(response, true, true).yaw_rate_radps, -0.034, 1e-12);
-  EXPECT_NEAR(tracker.state().gyro_null_counts, 505.02, 1e-12);
-  EXPECT_NEAR(tracker.update(response, true, true).yaw_rate_radps, -0.03366, 1e-12);
-  const double learnt_counts = tracker.state().gyro_null_counts;  // 505.0398
+  EXPECT_NEAR(tracker.state().gyro_null_counts, 506.0, 1e-12);
+  EXPECT_NEAR(tracker.update(response, true, true).yaw_rate_radps, -0.017, 1e-12);
+  EXPECT_NEAR(tracker.state().gyro_null_counts, 506.0 + 1.0 / 3.0, 1e-12);
+  const double learnt_counts = tracker.state().gyro_null_counts;
 
-  // Turning on the spot (yaw 480, 0.0170·(505.04 − 480) = 0.4257 rad/s): y is held.
+  // Turning on the spot (yaw 480, 0.0170·(506.33 − 480) = 0.448 rad/s): y is held.
   response.yaw = 480;
   for (int k = 0; k < 20; ++k) {
     const SensorState& state = tracker.update(response, false, false);
