@@ -32,6 +32,7 @@ Driver::Driver(const Params& params, std::optional<JointMemory> kept)
       sensors_(params.sensors, params.filters),
       operator_(params),
       motion_(params),
+      pose_(params.geometry.wheel_radius_m),
       runtime_(runtime_settings_from(params)),
       kept_(std::move(kept)) {
   validate(runtime_);
@@ -295,9 +296,28 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
     status_.motors[i].duty = duty_[i];
   }
   motion_.record_sent(duty_, in.supply_v);
+  update_pose(period_s);
   status_.startup_phase = startup_.phase();
   encode_requests();
   return requests_;
+}
+
+// Dead reckoning (pose_estimator.hpp) from the centre wheels once their controllers answer.
+void Driver::update_pose(double period_s) {
+  if (!motors_.motor(kCenterLeft).started() || !motors_.motor(kCenterRight).started()) return;
+  const MotorStatus& left = status_.motors[kCenterLeft];
+  const MotorStatus& right = status_.motors[kCenterRight];
+  estimation::OdometryInput in;
+  in.period_s = period_s;
+  in.yaw_rate_radps = status_.yaw_rate_radps;
+  in.slope_rad = status_.slope_rad;
+  in.left_velocity_radps = left.velocity_radps;
+  in.right_velocity_radps = right.velocity_radps;
+  in.left_load_radps = left.load_radps;
+  in.right_load_radps = right.load_radps;
+  in.left_no_load_radps = left.no_load_velocity_radps;
+  in.right_no_load_radps = right.no_load_velocity_radps;
+  status_.pose = pose_.update(in);
 }
 
 bool Driver::on_slope() const {

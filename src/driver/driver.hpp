@@ -71,6 +71,7 @@ class Driver {
   void take_up_joint_gaps();
   void encode_requests();
   std::string lcd_text() const;
+  void update_pose(double period_s);
   bool on_slope() const;  // the accelerometer off the vertical by more than the slant dead band
 
   const Params* params_;
@@ -80,6 +81,7 @@ class Driver {
   tracking::SensorTracker sensors_;
   OperatorChannel operator_;
   MotionController motion_;
+  estimation::PoseEstimator pose_;
   RuntimeSettings runtime_;
   DriverStatus status_;
   mobility::OperatorTargets targets_;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/estimation/pose_estimator.hpp"
 #include "core/mobility/gait_table.hpp"
 #include "core/params.hpp"
 #include "driver/frame_intake.hpp"
@@ -83,6 +84,9 @@ struct DriverStatus {
   std::vector<std::string> warnings;  // not latched, e.g. "supply 19.8 V near brown-out"
   BusCounters bus;
   std::string lcd;                  // the 8 characters sent to µ8
+  // Dead reckoning from the gyro and the centre wheels (core/estimation/pose_estimator.hpp), in
+  // the odometry frame of this driver's start.
+  estimation::Pose pose;
 };
 
 }  // namespace marsokhod::driver

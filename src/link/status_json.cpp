@@ -49,6 +49,17 @@ Json joint_bounds_json(const driver::JointBoundsStatus& b) {
           {"rear_max_rad", b.rear_max_rad}};
 }
 
+Json pose_json(const estimation::Pose& p) {
+  return {{"x_m", p.x_m},
+          {"y_m", p.y_m},
+          {"heading_rad", p.heading_rad},
+          {"speed_mps", p.speed_mps},
+          {"yaw_rate_radps", p.yaw_rate_radps},
+          {"distance_m", p.distance_m},
+          {"position_sigma_m", p.position_sigma_m()},
+          {"heading_sigma_rad", p.heading_sigma_rad()}};
+}
+
 }  // namespace
 
 Json status_json(const driver::DriverStatus& s, const Json& truth) {
@@ -92,6 +103,7 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
       {"warnings", s.warnings},
       {"bus", bus_json(s.bus)},
       {"lcd", s.lcd},
+      {"pose", pose_json(s.pose)},
   };
   if (!truth.is_null()) out["truth"] = truth;
   return out;

@@ -23,7 +23,10 @@ const std::vector<std::string>& run_metric_names() {
       "max_joint_bound_excess_rad", "final_front_joint_rad", "final_rear_joint_rad",
       "final_front_joint_max_rad", "final_rear_joint_min_rad", "final_joint_error_rad", "mean_abs_slip_mps", "max_slip_mps", "gait_state_changes",
       "operator_timeouts", "driver_faults", "malformed_frames", "brownouts", "driver_restarts",
-      "energy_used_j", "final_max_abs_duty", "time_to_motors_off_s", "time_to_standstill_s"};
+      "energy_used_j", "final_max_abs_duty", "time_to_motors_off_s", "time_to_standstill_s",
+      "odometry_position_error_m", "odometry_position_error_share", "odometry_heading_error_rad",
+      "odometry_position_sigma_m", "wheel_odometry_position_error_m",
+      "wheel_odometry_heading_error_rad"};
   return names;
 }
 
@@ -140,6 +143,7 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   }
   observe_phases(session, now, voltage_drop_v, joint_error_rad(t), bound_excess_rad);
   if (!cycle.driver_running) return;
+  observe_odometry(session, t);
   if (voltage_drop_v) {
     max_voltage_drop_v_ = std::max(max_voltage_drop_v_, *voltage_drop_v);
     min_max_duty_ = std::min(min_max_duty_, s.max_duty);
@@ -180,6 +184,52 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
   m[p + "max_joint_bound_excess_rad"] = w.max_bound_excess_rad;
 }
 
+void Metrics::observe_odometry(const Session& session, const sim::GroundTruth& t) {
+  const driver::DriverStatus& s = session.status();
+  if (s.cycle == 1 || !odometry_started_) {
+    odometry_started_ = true;
+    odometry_origin_m_ = {t.position_m[0], t.position_m[1]};
+    odometry_origin_yaw_rad_ = yaw_unwrapped_rad_;
+    odometry_origin_path_m_ = path_length_m_;
+    wheel_pose_ = {};
+  }
+  // diff_drive_controller's formula, each side the mean of its three wheels.
+  const auto& m = s.motors;
+  const double left = (m[kFrontLeft].velocity_radps + m[kCenterLeft].velocity_radps +
+                       m[kBackLeft].velocity_radps) / 3.0;
+  const double right = (m[kFrontRight].velocity_radps + m[kCenterRight].velocity_radps +
+                        m[kBackRight].velocity_radps) / 3.0;
+  const double h = params_->cycle.period_s;
+  const double r = params_->geometry.wheel_radius_m;
+  const double ds = r * 0.5 * (left + right) * h;
+  const double dpsi = r * (right - left) / params_->geometry.track_width_m * h;
+  const double mid = wheel_pose_[2] + 0.5 * dpsi;
+  wheel_pose_[0] += ds * std::cos(mid);
+  wheel_pose_[1] += ds * std::sin(mid);
+  wheel_pose_[2] += dpsi;
+}
+
+void Metrics::add_odometry_metrics(const Session& session, std::map<std::string, double>& m) const {
+  if (!odometry_started_) return;
+  // The truth's displacement since the origin, in the frame of the heading there.
+  const double c = std::cos(odometry_origin_yaw_rad_);
+  const double s = std::sin(odometry_origin_yaw_rad_);
+  const double dx = last_position_m_[0] - odometry_origin_m_[0];
+  const double dy = last_position_m_[1] - odometry_origin_m_[1];
+  const double x = c * dx + s * dy;
+  const double y = -s * dx + c * dy;
+  const double heading = yaw_unwrapped_rad_ - odometry_origin_yaw_rad_;
+  const estimation::Pose& p = session.status().pose;
+  const double error = std::hypot(p.x_m - x, p.y_m - y);
+  const double path = path_length_m_ - odometry_origin_path_m_;
+  m["odometry_position_error_m"] = error;
+  m["odometry_position_error_share"] = path > 0.0 ? error / path : 0.0;
+  m["odometry_heading_error_rad"] = std::abs(p.heading_rad - heading);
+  m["odometry_position_sigma_m"] = p.position_sigma_m();
+  m["wheel_odometry_position_error_m"] = std::hypot(wheel_pose_[0] - x, wheel_pose_[1] - y);
+  m["wheel_odometry_heading_error_rad"] = std::abs(wheel_pose_[2] - heading);
+}
+
 std::map<std::string, double> Metrics::finish(const Session& session) const {
   const sim::GroundTruth t = session.rover().truth();
   std::map<std::string, double> m;
@@ -216,6 +266,7 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
     m["time_to_motors_off_s"] = std::max(0.0, last_duty_s_ - *stop_mark_s_);
     m["time_to_standstill_s"] = std::max(0.0, last_motion_s_ - *stop_mark_s_);
   }
+  add_odometry_metrics(session, m);
   for (const PhaseWindow& w : phases_) {
     if (!w.start) continue;  // the run ended before the phase began
     add_phase_metrics(w, w.end ? *w.end : snapshot(session, session.time_s()), m);

@@ -12,7 +12,13 @@
 // and, only when the operator fell silent or the driver halted: time_to_motors_off_s (from then
 // to the last cycle a duty cycle was applied by µ0–µ7) and time_to_standstill_s (to the last
 // cycle with a duty applied, the body moving faster than 0.01 m/s or turning faster than
-// 0.05 rad/s).
+// 0.05 rad/s). The dead reckoning against the truth, from the last (re)start of the driver to
+// the end, the truth carried into the driver's odometry frame: odometry_position_error_m,
+// odometry_position_error_share (of the path length since then), odometry_heading_error_rad,
+// odometry_position_sigma_m (the estimate's own 1-σ), and the same errors of the plain wheel
+// odometry of diff_drive_controller's formula over the three wheels of each side (v = r·(w̄_L +
+// w̄_R)/2, ω = r·(w̄_R − w̄_L)/track): wheel_odometry_position_error_m,
+// wheel_odometry_heading_error_rad.
 //
 // For each [[phase]] (phase_metric_names()), named "PHASE.metric": duration_s, distance_m,
 // forward_distance_m, path_length_m, mean_speed_mps (path length / duration), yaw_change_rad,
@@ -98,6 +104,14 @@ class Metrics {
   double gait_state_changes_ = 0.0;
   std::size_t last_gait_state_ = 0;
   double timeouts_ = 0.0;
+  // Odometry: the truth where the driver last (re)started, and the wheel odometry since.
+  bool odometry_started_ = false;
+  std::array<double, 2> odometry_origin_m_{};
+  double odometry_origin_yaw_rad_ = 0.0;
+  double odometry_origin_path_m_ = 0.0;
+  std::array<double, 3> wheel_pose_{};  // x, y, ψ
+  void observe_odometry(const Session& session, const sim::GroundTruth& truth);
+  void add_odometry_metrics(const Session& session, std::map<std::string, double>& m) const;
   bool was_timed_out_ = true;
   double faults_ = 0.0;
   double malformed_ = 0.0;

@@ -32,6 +32,8 @@ std::string telemetry_header() {
        "true_yaw_rate_radps,true_p6_rad,true_p7_rad,true_supply_v,true_current_a,"
        "computer_on,energy_j";
   for (std::size_t w = 0; w < kWheelCount; ++w) h += std::string(",slip_") + kMotorNames[w] + "_mps";
+  h += ",odo_x_m,odo_y_m,odo_heading_rad,odo_speed_mps,odo_distance_m,odo_sigma_m,"
+       "odo_heading_sigma_rad";
   return h;
 }
 
@@ -71,6 +73,11 @@ std::string telemetry_row(double time_s, bool running, const driver::DriverStatu
     add(row, v);
   }
   for (double slip : t.wheel_slip_mps) add(row, slip);
+  const estimation::Pose& p = s.pose;
+  for (double v : {p.x_m, p.y_m, p.heading_rad, p.speed_mps, p.distance_m, p.position_sigma_m(),
+                   p.heading_sigma_rad()}) {
+    add(row, v);
+  }
   return row;
 }
 

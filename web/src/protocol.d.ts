@@ -141,6 +141,19 @@ export type ServerMessage =
 /** A number of the status: one that is not finite is null in JSON. */
 export type StatusNumber = number | null;
 
+/** Dead reckoning from the gyro and the centre wheels, in the odometry frame of the driver's start
+ * (x forward, y left, heading counter-clockwise). */
+export interface Pose {
+  x_m: StatusNumber;
+  y_m: StatusNumber;
+  heading_rad: StatusNumber;
+  speed_mps: StatusNumber;
+  yaw_rate_radps: StatusNumber;
+  distance_m: StatusNumber;
+  position_sigma_m: StatusNumber;
+  heading_sigma_rad: StatusNumber;
+}
+
 /** Motor 0…7 of (3.1). */
 export type MotorName = 'FL' | 'FR' | 'CL' | 'CR' | 'BL' | 'BR' | 'AF' | 'AR';
 
@@ -238,5 +251,6 @@ export interface Status {
   warnings: string[];
   bus: BusStatus;
   lcd: string;
+  pose: Pose;
   truth?: Truth;
 }

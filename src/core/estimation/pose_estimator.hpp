@@ -1,0 +1,88 @@
+// Where the rover is: a planar pose (x, y, ψ) in the odometry frame, dead-reckoned every cycle
+// from the gyro and the centre axle's wheels, with its uncertainty (an extended Kalman filter's
+// prediction step; there is no absolute measurement to correct it with).
+//
+// The frame: x forward and y to the left of the rover where the driver started (or was reset),
+// ψ counter-clockwise seen from above, the same sense as the yaw rate of µ8's gyro. The point
+// tracked is the middle of the centre axle: it is the chassis segment both joints hang from, and
+// its two wheels are the only ones whose rolling is the chassis' motion in every elementary
+// motion (the exterior axles move relative to it while a joint bends, (5.1)/(5.2)).
+//
+// Per cycle of period h, with the yaw rate ω (the gyro less its null (3.4)), the centre wheels'
+// measured velocities w_CL, w_CR (chapter 4.2) and the wheel radius r:
+//   Δs = r·(w_CL + w_CR)/2 · h · cos σ     the distance along the ground, projected to the
+//                                          horizontal with the slope σ of chapter 6.2.1
+//   Δψ = ω·h
+//   x ← x + Δs·cos(ψ + Δψ/2),  y ← y + Δs·sin(ψ + Δψ/2),  ψ ← ψ + Δψ          (midpoint rule)
+// Skid steering turns the rover by dragging wheels sideways, so the wheels' difference says
+// little about the heading (the thesis: odometry "meaningless … in particular when the robot is
+// turning"); the gyro gives it. The wheels give the distance only where they roll.
+//
+// Uncertainty, P the 3×3 covariance of (x, y, ψ):
+//   P ← F P Fᵀ + G Q Gᵀ,  F = [1 0 −Δs·sin ψ̄; 0 1 Δs·cos ψ̄; 0 0 1],  G = [cos ψ̄ 0; sin ψ̄ 0; 0 1]
+//   Q = diag(σ_s², σ_ψ²),  σ_s² = k_s²·|Δs|·(1 m)·(1 + slip),  σ_ψ² = σ_ω²·h + k_ψ²·|Δψ|·(1 rad)
+// with ψ̄ = ψ + Δψ/2. Both are random walks: the distance's σ after 1 m of rolling is k_s, the
+// heading's after 1 s at rest σ_ω and after one radian turned k_ψ; the covariance does not depend
+// on the cycle's period. slip = min(1, (|l_CL| + |l_CR|)/(|ν_CL| + |ν_CR|)) is the centre wheels'
+// load (Definition 4.9) against their commanded speed: a wheel that slips or is blocked meets a
+// load as large as its command, and its distance then counts twice in P. A scale error that
+// stays (the wheel radius: 0.125 m with the blades on solid ground, 0.115 m on granules) grows
+// with the distance, not its square root; P does not model it.
+#pragma once
+
+#include <array>
+
+namespace marsokhod::estimation {
+
+struct PoseNoise {
+  double distance_share = 0.02;       // k_s: σ 2 cm after 1 m on rolling wheels
+  double gyro_rate_radps = 0.005;     // σ_ω [rad/√s]: the gyro's rate noise after its null
+  double gyro_scale_share = 0.02;     // k_ψ: σ 0.02 rad after one radian turned
+};
+
+struct OdometryInput {
+  double period_s = 0.0;                  // h
+  double yaw_rate_radps = 0.0;            // ω, the gyro less its null (3.4)
+  double slope_rad = 0.0;                 // σ of chapter 6.2.1
+  double left_velocity_radps = 0.0;       // w_CL, measured
+  double right_velocity_radps = 0.0;      // w_CR
+  double left_load_radps = 0.0;           // l_CL = w − ν (Definition 4.9)
+  double right_load_radps = 0.0;          // l_CR
+  double left_no_load_radps = 0.0;        // ν_CL of (4.4)
+  double right_no_load_radps = 0.0;       // ν_CR
+};
+
+struct Pose {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double heading_rad = 0.0;          // ψ, unwrapped (turns add up)
+  double speed_mps = 0.0;            // Δs/h, signed (backward < 0)
+  double yaw_rate_radps = 0.0;       // ω
+  double distance_m = 0.0;           // Σ|Δs|: the path length
+  std::array<double, 9> covariance{};  // P, row-major, (x, y, ψ)
+  double position_sigma_m() const;   // √(P_xx + P_yy)
+  double heading_sigma_rad() const;  // √P_ψψ
+};
+
+class PoseEstimator {
+ public:
+  // Throws std::invalid_argument unless the wheel radius is > 0 and every noise term ≥ 0, all
+  // finite.
+  PoseEstimator(double wheel_radius_m, PoseNoise noise = {});
+
+  // One cycle. Throws std::invalid_argument naming the field when an input is not finite or
+  // h ≤ 0; the pose is unchanged then.
+  const Pose& update(const OdometryInput& input);
+
+  // Back to the origin with no uncertainty: the odometry frame starts here.
+  void reset();
+
+  const Pose& pose() const { return pose_; }
+
+ private:
+  double wheel_radius_m_;
+  PoseNoise noise_;
+  Pose pose_;
+};
+
+}  // namespace marsokhod::estimation
