@@ -198,6 +198,16 @@ struct SafetyParams {
   // A restarted driver continues from the joint state its predecessor kept only if it is at
   // most this old (driver/joint_memory.hpp): a brown-out's reboot takes about 30 s.
   double joint_memory_max_age_s = 300.0;
+  // The failsafes that need an estimate (core/estimation/failsafes.hpp): roll or pitch of the
+  // mean gravity beyond its limit ⇒ "tip-over" fault; the wheels stalled under a command ⇒
+  // "stuck" fault after stuck_time_s (0: off).
+  double tip_over_roll_rad = 0.6981;         // 40°; the rover rolls over at about 60°
+  double tip_over_pitch_rad = 0.6981;        // 40°
+  double tip_over_time_constant_s = 0.25;    // the accelerometer's mean
+  double stuck_time_s = 5.0;
+  double stuck_min_command_radps = 0.2;      // the centre wheels' mean |ν| that counts as driving
+  double stuck_turning_share = 0.2;          // stalled: Σ|w| ≤ this · Σ|ν| of the centre wheels
+  double stuck_min_yaw_rate_radps = 0.1;     // a rover turning faster is not stuck
 };
 
 struct Params {

@@ -33,6 +33,10 @@ Driver::Driver(const Params& params, std::optional<JointMemory> kept)
       operator_(params),
       motion_(params),
       pose_(params.geometry.wheel_radius_m),
+      tip_over_({params.safety.tip_over_roll_rad, params.safety.tip_over_pitch_rad,
+                 params.safety.tip_over_time_constant_s}),
+      stuck_({params.safety.stuck_time_s, params.safety.stuck_min_command_radps,
+              params.safety.stuck_turning_share, params.safety.stuck_min_yaw_rate_radps}),
       runtime_(runtime_settings_from(params)),
       kept_(std::move(kept)) {
   validate(runtime_);
@@ -261,6 +265,7 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   status_.targets = {targets_.v1_radps, targets_.v2_radps, targets_.v4_radps, targets_.v6_radps,
                      targets_.v7_radps};
   update_faults(input);
+  update_failsafes(period_s);
 
   status_.startup_phase = startup_.phase();
   if (!status_.faults.empty()) {
@@ -318,6 +323,36 @@ void Driver::update_pose(double period_s) {
   in.left_no_load_radps = left.no_load_velocity_radps;
   in.right_no_load_radps = right.no_load_velocity_radps;
   status_.pose = pose_.update(in);
+}
+
+// The failsafes that need an estimate: each latches a fault (and so stops the motors) as a silent
+// controller does. The tip-over fault comes back after a clear while the rover is still tilted;
+// the stall's time starts again after one.
+void Driver::update_failsafes(double period_s) {
+  const auto latch = [this](const std::string& fault, std::string_view kind) {
+    const bool latched = std::any_of(status_.faults.begin(), status_.faults.end(),
+                                     [&](const std::string& f) { return f.starts_with(kind); });
+    if (!latched) status_.faults.push_back(fault);
+  };
+  const tracking::SensorState& s = sensors_.state();
+  if (s.update_count > attitude_readings_) {
+    attitude_readings_ = s.update_count;
+    if (const auto fault = tip_over_.update(status_.accel_mps2, period_s)) latch(*fault, "tip-over");
+    status_.attitude = tip_over_.attitude();
+  }
+  estimation::StuckInput in;
+  in.period_s = period_s;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::size_t i = k == 0 ? kCenterLeft : kCenterRight;
+    in.no_load_radps[k] = status_.motors[i].no_load_velocity_radps;
+    in.velocity_radps[k] = motors_.sample().velocity_radps[i];
+  }
+  in.yaw_rate_radps = status_.yaw_rate_radps;
+  in.driving = status_.mode == DriverMode::kDriving;  // the mode of the cycle before
+  in.motion_asked = targets_.v1_radps != 0.0 || targets_.v2_radps != 0.0 ||
+                    (targets_.gait != mobility::Gait::kNone && targets_.gait_speed != 0.0);
+  if (const auto fault = stuck_.update(in)) latch(*fault, "stuck");
+  status_.stalled_s = stuck_.stalled_s();
 }
 
 bool Driver::on_slope() const {

@@ -72,6 +72,7 @@ class Driver {
   void encode_requests();
   std::string lcd_text() const;
   void update_pose(double period_s);
+  void update_failsafes(double period_s);  // tip-over and stuck (core/estimation/failsafes.hpp)
   bool on_slope() const;  // the accelerometer off the vertical by more than the slant dead band
 
   const Params* params_;
@@ -82,6 +83,9 @@ class Driver {
   OperatorChannel operator_;
   MotionController motion_;
   estimation::PoseEstimator pose_;
+  estimation::TipOverMonitor tip_over_;
+  estimation::StuckMonitor stuck_;
+  std::uint64_t attitude_readings_ = 0;  // µ8's readings the tip-over monitor has seen
   RuntimeSettings runtime_;
   DriverStatus status_;
   mobility::OperatorTargets targets_;

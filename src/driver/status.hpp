@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/estimation/failsafes.hpp"
 #include "core/estimation/pose_estimator.hpp"
 #include "core/mobility/gait_table.hpp"
 #include "core/params.hpp"
@@ -87,6 +88,10 @@ struct DriverStatus {
   // Dead reckoning from the gyro and the centre wheels (core/estimation/pose_estimator.hpp), in
   // the odometry frame of this driver's start.
   estimation::Pose pose;
+  // The failsafes of core/estimation/failsafes.hpp: the chassis' attitude from the mean gravity
+  // (+ left side up, + nose down), and how long the wheels have been stalled.
+  estimation::Attitude attitude;
+  double stalled_s = 0.0;
 };
 
 }  // namespace marsokhod::driver

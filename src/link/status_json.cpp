@@ -104,6 +104,8 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
       {"bus", bus_json(s.bus)},
       {"lcd", s.lcd},
       {"pose", pose_json(s.pose)},
+      {"attitude", Json{{"roll_rad", s.attitude.roll_rad}, {"pitch_rad", s.attitude.pitch_rad}}},
+      {"stalled_s", s.stalled_s},
   };
   if (!truth.is_null()) out["truth"] = truth;
   return out;

@@ -26,7 +26,8 @@ const std::vector<std::string>& run_metric_names() {
       "energy_used_j", "final_max_abs_duty", "time_to_motors_off_s", "time_to_standstill_s",
       "odometry_position_error_m", "odometry_position_error_share", "odometry_heading_error_rad",
       "odometry_position_sigma_m", "wheel_odometry_position_error_m",
-      "wheel_odometry_heading_error_rad"};
+      "wheel_odometry_heading_error_rad", "max_roll_rad", "max_pitch_rad", "tip_over_faults",
+      "stuck_faults", "first_tip_over_s", "first_stuck_s", "other_faults"};
   return names;
 }
 
@@ -123,6 +124,8 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
       std::max(bound_excess(t.joint_angle_rad[kFrontJoint], j.front_min_rad, j.front_max_rad),
                bound_excess(t.joint_angle_rad[kRearJoint], j.rear_min_rad, j.rear_max_rad));
   max_bound_excess_rad_ = std::max(max_bound_excess_rad_, bound_excess_rad);
+  max_roll_rad_ = std::max(max_roll_rad_, std::abs(t.roll_pitch_yaw_rad[0]));
+  max_pitch_rad_ = std::max(max_pitch_rad_, std::abs(t.roll_pitch_yaw_rad[1]));
   for (double slip : t.wheel_slip_mps) {
     slip_sum_ += std::abs(slip);
     max_slip_mps_ = std::max(max_slip_mps_, std::abs(slip));
@@ -154,6 +157,24 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   if (s.operator_timeout && !was_timed_out_) ++timeouts_;
   was_timed_out_ = s.operator_timeout;
   faults_ = std::max(faults_, static_cast<double>(s.faults.size()));
+  const auto latched = [&s](std::string_view kind) {
+    return std::any_of(s.faults.begin(), s.faults.end(),
+                       [kind](const std::string& f) { return f.starts_with(kind); });
+  };
+  const bool tip_over = latched("tip-over");
+  const bool stuck = latched("stuck");
+  if (tip_over && !tip_over_latched_) {
+    ++tip_over_faults_;
+    if (first_tip_over_s_ < 0.0) first_tip_over_s_ = now;
+  }
+  if (stuck && !stuck_latched_) {
+    ++stuck_faults_;
+    if (first_stuck_s_ < 0.0) first_stuck_s_ = now;
+  }
+  tip_over_latched_ = tip_over;
+  stuck_latched_ = stuck;
+  other_faults_ = std::max(other_faults_, static_cast<double>(s.faults.size()) - (tip_over ? 1.0 : 0.0) -
+                                              (stuck ? 1.0 : 0.0));
   malformed_ = static_cast<double>(s.bus.malformed);
 }
 
@@ -255,6 +276,13 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
   m["gait_state_changes"] = gait_state_changes_;
   m["operator_timeouts"] = timeouts_;
   m["driver_faults"] = faults_;
+  m["max_roll_rad"] = max_roll_rad_;
+  m["max_pitch_rad"] = max_pitch_rad_;
+  m["tip_over_faults"] = tip_over_faults_;
+  m["stuck_faults"] = stuck_faults_;
+  m["first_tip_over_s"] = first_tip_over_s_;
+  m["first_stuck_s"] = first_stuck_s_;
+  m["other_faults"] = other_faults_;
   m["malformed_frames"] = malformed_;
   m["brownouts"] = static_cast<double>(session.rover().electrics().brownout_count);
   m["driver_restarts"] = static_cast<double>(session.driver_restarts());

@@ -18,7 +18,11 @@
 // odometry_position_sigma_m (the estimate's own 1-σ), and the same errors of the plain wheel
 // odometry of diff_drive_controller's formula over the three wheels of each side (v = r·(w̄_L +
 // w̄_R)/2, ω = r·(w̄_R − w̄_L)/track): wheel_odometry_position_error_m,
-// wheel_odometry_heading_error_rad.
+// wheel_odometry_heading_error_rad. The failsafes: max_roll_rad and max_pitch_rad (|roll|,
+// |pitch| of the centre unit, ground truth, the whole run), tip_over_faults and stuck_faults (how
+// often the driver latched that fault), first_tip_over_s and first_stuck_s (when it first did;
+// −1: never), other_faults (like driver_faults, the most faults latched at once, not counting
+// these two).
 //
 // For each [[phase]] (phase_metric_names()), named "PHASE.metric": duration_s, distance_m,
 // forward_distance_m, path_length_m, mean_speed_mps (path length / duration), yaw_change_rad,
@@ -104,6 +108,11 @@ class Metrics {
   double gait_state_changes_ = 0.0;
   std::size_t last_gait_state_ = 0;
   double timeouts_ = 0.0;
+  double max_roll_rad_ = 0.0, max_pitch_rad_ = 0.0;  // |roll|, |pitch| of the truth
+  double tip_over_faults_ = 0.0, stuck_faults_ = 0.0;
+  double first_tip_over_s_ = -1.0, first_stuck_s_ = -1.0;
+  double other_faults_ = 0.0;
+  bool tip_over_latched_ = false, stuck_latched_ = false;
   // Odometry: the truth where the driver last (re)started, and the wheel odometry since.
   bool odometry_started_ = false;
   std::array<double, 2> odometry_origin_m_{};

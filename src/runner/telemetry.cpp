@@ -33,7 +33,7 @@ std::string telemetry_header() {
        "computer_on,energy_j";
   for (std::size_t w = 0; w < kWheelCount; ++w) h += std::string(",slip_") + kMotorNames[w] + "_mps";
   h += ",odo_x_m,odo_y_m,odo_heading_rad,odo_speed_mps,odo_distance_m,odo_sigma_m,"
-       "odo_heading_sigma_rad";
+       "odo_heading_sigma_rad,roll_rad,pitch_rad,stalled_s";
   return h;
 }
 
@@ -75,7 +75,7 @@ std::string telemetry_row(double time_s, bool running, const driver::DriverStatu
   for (double slip : t.wheel_slip_mps) add(row, slip);
   const estimation::Pose& p = s.pose;
   for (double v : {p.x_m, p.y_m, p.heading_rad, p.speed_mps, p.distance_m, p.position_sigma_m(),
-                   p.heading_sigma_rad()}) {
+                   p.heading_sigma_rad(), s.attitude.roll_rad, s.attitude.pitch_rad, s.stalled_s}) {
     add(row, v);
   }
   return row;

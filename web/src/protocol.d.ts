@@ -154,6 +154,12 @@ export interface Pose {
   heading_sigma_rad: StatusNumber;
 }
 
+/** The tip-over failsafe's attitude (src/core/estimation/failsafes.hpp): + left side up, + nose down. */
+export interface Attitude {
+  roll_rad: StatusNumber;
+  pitch_rad: StatusNumber;
+}
+
 /** Motor 0…7 of (3.1). */
 export type MotorName = 'FL' | 'FR' | 'CL' | 'CR' | 'BL' | 'BR' | 'AF' | 'AR';
 
@@ -252,5 +258,7 @@ export interface Status {
   bus: BusStatus;
   lcd: string;
   pose: Pose;
+  attitude: Attitude;
+  stalled_s: StatusNumber;
   truth?: Truth;
 }

@@ -1,0 +1,103 @@
+#include "core/estimation/failsafes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <stdexcept>
+
+#include "core/checks/checks.hpp"
+
+namespace marsokhod::estimation {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+constexpr double kMinReadingMps2 = 0.981;  // a tenth of g
+
+bool in_range(double v, double lo, double hi) { return std::isfinite(v) && v > lo && v <= hi; }
+
+}  // namespace
+
+TipOverMonitor::TipOverMonitor(TipOverLimits limits) : limits_(limits) {
+  constexpr double kHalfPi = std::numbers::pi / 2.0;
+  if (!in_range(limits.roll_rad, 0.0, kHalfPi) || !in_range(limits.pitch_rad, 0.0, kHalfPi)) {
+    throw std::invalid_argument("TipOverMonitor: the roll and pitch limits must lie in (0, π/2] rad, got " +
+                                checks::format_number(limits.roll_rad) + " and " +
+                                checks::format_number(limits.pitch_rad));
+  }
+  checks::law::require_positive(limits.time_constant_s, "TipOverMonitor", "time_constant_s");
+}
+
+std::optional<std::string> TipOverMonitor::update(const std::array<double, 3>& a,
+                                                  double period_s) {
+  constexpr std::string_view kLaw = "TipOverMonitor::update";
+  checks::law::require_positive(period_s, kLaw, "period_s");
+  for (std::size_t i = 0; i < 3; ++i) {
+    checks::law::require_finite(a[i], kLaw, checks::argument_name("accel_mps2", i));
+  }
+  if (std::hypot(a[0], a[1], a[2]) >= kMinReadingMps2) {
+    const double alpha = std::min(1.0, period_s / limits_.time_constant_s);
+    for (std::size_t i = 0; i < 3; ++i) mean_mps2_[i] += alpha * (a[i] - mean_mps2_[i]);
+  }
+  const auto& m = mean_mps2_;
+  attitude_.roll_rad = std::atan2(-m[1], -m[2]);
+  attitude_.pitch_rad = std::atan2(m[0], std::hypot(m[1], m[2]));
+  const bool roll = std::abs(attitude_.roll_rad) > limits_.roll_rad;
+  const bool pitch = std::abs(attitude_.pitch_rad) > limits_.pitch_rad;
+  if (!roll && !pitch) return std::nullopt;
+  char text[96];
+  std::snprintf(text, sizeof text, "tip-over: %s %.1f° beyond the limit %.1f°",
+                roll ? "roll" : "pitch",
+                (roll ? attitude_.roll_rad : attitude_.pitch_rad) * kRadToDeg,
+                (roll ? limits_.roll_rad : limits_.pitch_rad) * kRadToDeg);
+  return std::string(text);
+}
+
+StuckMonitor::StuckMonitor(StuckLimits limits) : limits_(limits) {
+  checks::law::require_finite(limits.time_s, "StuckMonitor", "time_s");
+  if (limits.time_s < 0.0) {
+    throw std::invalid_argument("StuckMonitor: time_s must be ≥ 0 (0 switches the check off), got " +
+                                checks::format_number(limits.time_s));
+  }
+  checks::law::require_positive(limits.min_command_radps, "StuckMonitor", "min_command_radps");
+  checks::law::require_positive(limits.min_yaw_rate_radps, "StuckMonitor", "min_yaw_rate_radps");
+  if (!(std::isfinite(limits.turning_share) && limits.turning_share >= 0.0 &&
+        limits.turning_share < 1.0)) {
+    throw std::invalid_argument("StuckMonitor: turning_share must lie in [0, 1), got " +
+                                checks::format_number(limits.turning_share));
+  }
+}
+
+std::optional<std::string> StuckMonitor::update(const StuckInput& in) {
+  constexpr std::string_view kLaw = "StuckMonitor::update";
+  checks::law::require_positive(in.period_s, kLaw, "period_s");
+  checks::law::require_finite(in.yaw_rate_radps, kLaw, "yaw_rate_radps");
+  double commanded = 0.0;
+  double turned = 0.0;
+  for (std::size_t i = 0; i < in.no_load_radps.size(); ++i) {
+    checks::law::require_finite(in.no_load_radps[i], kLaw, checks::argument_name("no_load_radps", i));
+    checks::law::require_finite(in.velocity_radps[i], kLaw,
+                                checks::argument_name("velocity_radps", i));
+    commanded += std::abs(in.no_load_radps[i]);
+    turned += std::abs(in.velocity_radps[i]);
+  }
+  const bool stalled = limits_.time_s > 0.0 && in.driving && in.motion_asked &&
+                       commanded >= limits_.min_command_radps * static_cast<double>(in.no_load_radps.size()) &&
+                       turned <= limits_.turning_share * commanded &&
+                       std::abs(in.yaw_rate_radps) < limits_.min_yaw_rate_radps;
+  if (!stalled) {
+    stalled_s_ = turned_sum_ = command_sum_ = 0.0;
+    return std::nullopt;
+  }
+  const bool before = stalled_s_ >= limits_.time_s;
+  stalled_s_ += in.period_s;
+  turned_sum_ += turned;
+  command_sum_ += commanded;
+  if (before || stalled_s_ < limits_.time_s) return std::nullopt;
+  char text[128];
+  std::snprintf(text, sizeof text, "stuck: the centre wheels turned at %.0f %% of their command for %.1f s",
+                100.0 * turned_sum_ / command_sum_, stalled_s_);
+  return std::string(text);
+}
+
+}  // namespace marsokhod::estimation

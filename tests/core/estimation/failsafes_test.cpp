@@ -1,0 +1,173 @@
+// The failsafes of failsafes.hpp: the attitude from gravity against closed forms, the filter's
+// tolerance of vibration, and the stall's timing to the cycle.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "core/estimation/failsafes.hpp"
+
+namespace marsokhod::estimation {
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kH = 1.0 / 64.0;  // exact in binary: 192 cycles are 3 s to the bit
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// What the accelerometer reads at rest with the chassis rolled by φ (+ left side up) and pitched
+// by θ (+ nose down): gravity (0, 0, −g) in the chassis frame, R_x(φ)ᵀ·R_y(θ)ᵀ·(0, 0, −g).
+std::array<double, 3> at_rest(double roll_rad, double pitch_rad) {
+  return {kG * std::sin(pitch_rad), -kG * std::cos(pitch_rad) * std::sin(roll_rad),
+          -kG * std::cos(pitch_rad) * std::cos(roll_rad)};
+}
+
+std::optional<std::string> hold(TipOverMonitor& m, const std::array<double, 3>& a, int cycles) {
+  std::optional<std::string> fault;
+  for (int k = 0; k < cycles; ++k) fault = m.update(a, kH);
+  return fault;
+}
+
+TEST(TipOverMonitor, TheAttitudeOfAChassisAtRestIsItsRollAndPitch) {
+  TipOverMonitor m;
+  EXPECT_FALSE(hold(m, at_rest(0.0, 0.0), 1).has_value());
+  EXPECT_EQ(m.attitude().roll_rad, 0.0);
+  EXPECT_EQ(m.attitude().pitch_rad, 0.0);
+  // 30° with the left side up, 12° nose up: 640 cycles (10 s, 40 τ) leave e^−40 of the start.
+  EXPECT_FALSE(hold(m, at_rest(30.0 * kDeg, -12.0 * kDeg), 640).has_value());
+  EXPECT_NEAR(m.attitude().roll_rad, 30.0 * kDeg, 1e-9);
+  EXPECT_NEAR(m.attitude().pitch_rad, -12.0 * kDeg, 1e-9);
+}
+
+TEST(TipOverMonitor, ARollBeyondTheLimitIsAFaultOnceTheMeanIsThere) {
+  TipOverMonitor m;  // 40°, τ = 0.25 s
+  const auto rolled = at_rest(-45.0 * kDeg, 0.0);  // the right side up
+  // One reading moves the mean by h/τ = 1/16 of the way: the roll is far from 40° yet.
+  EXPECT_FALSE(m.update(rolled, kH).has_value());
+  EXPECT_LT(std::abs(m.attitude().roll_rad), 10.0 * kDeg);
+  // After k readings the mean is (1 − f)·(0, 0, −g) + f·rolled with f = 1 − (15/16)^k; its roll
+  // is 40° where 0.7071·f/(1 − 0.2929·f) = tan 40°: f = 0.8806, k = 32.9: the 33rd reading,
+  // 0.52 s.
+  int first = 0;
+  for (int k = 2; k <= 64 && first == 0; ++k) {
+    if (m.update(rolled, kH).has_value()) first = k;
+  }
+  EXPECT_EQ(first, 33);
+  // Ten seconds on it reads the roll itself, and keeps reporting it.
+  const auto fault = hold(m, rolled, 640);
+  ASSERT_TRUE(fault.has_value());
+  EXPECT_NEAR(m.attitude().roll_rad, -45.0 * kDeg, 1e-9);
+  EXPECT_EQ(*fault, "tip-over: roll -45.0° beyond the limit 40.0°");
+}
+
+TEST(TipOverMonitor, APitchBeyondTheLimitIsAFault) {
+  TipOverMonitor m({.roll_rad = 0.5, .pitch_rad = 0.6, .time_constant_s = 0.25});
+  EXPECT_FALSE(hold(m, at_rest(0.0, 0.59), 640).has_value());
+  const auto fault = hold(m, at_rest(0.0, 0.61), 640);
+  ASSERT_TRUE(fault.has_value());
+  EXPECT_EQ(fault->rfind("tip-over: pitch 35.0° beyond the limit 34.4°", 0), 0u) << *fault;
+}
+
+TEST(TipOverMonitor, VibrationOnASlopeDoesNotTripIt) {
+  // 35° nose up on sand: the blades shake the chassis by ±3 m/s² along z and x, in turn, each
+  // reading alone up to 49° off the vertical; the mean stays at 35°.
+  TipOverMonitor m;
+  const auto slope = at_rest(0.0, -35.0 * kDeg);
+  for (int k = 0; k < 1280; ++k) {
+    auto a = slope;
+    const double shake = (k % 2 == 0 ? 3.0 : -3.0);
+    a[k % 4 < 2 ? 2 : 0] += shake;
+    ASSERT_FALSE(m.update(a, kH).has_value()) << k;
+  }
+  EXPECT_NEAR(m.attitude().pitch_rad, -35.0 * kDeg, 1.0 * kDeg);
+}
+
+TEST(TipOverMonitor, ReadingsNearZeroDoNotCount) {
+  TipOverMonitor m;
+  hold(m, at_rest(20.0 * kDeg, 0.0), 640);
+  const double before = m.attitude().roll_rad;
+  EXPECT_FALSE(hold(m, {0.0, 0.5, 0.5}, 64).has_value());  // 0.71 m/s² < g/10: a broken sensor
+  EXPECT_EQ(m.attitude().roll_rad, before);
+}
+
+TEST(TipOverMonitor, BadLimitsAndInputsAreRejectedByName) {
+  EXPECT_THROW(TipOverMonitor({.roll_rad = 0.0}), std::invalid_argument);
+  EXPECT_THROW(TipOverMonitor({.pitch_rad = 2.0}), std::invalid_argument);
+  EXPECT_THROW(TipOverMonitor({.time_constant_s = 0.0}), std::invalid_argument);
+  TipOverMonitor m;
+  try {
+    m.update({0.0, std::nan(""), -kG}, kH);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("accel_mps2[1]"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(m.update({0.0, 0.0, -kG}, 0.0), std::invalid_argument);
+}
+
+// Both centre wheels commanded ν, turning at w; the gyro at ω.
+StuckInput wheels(double nu, double w, double omega = 0.0, bool driving = true) {
+  StuckInput in;
+  in.period_s = kH;
+  in.no_load_radps.fill(nu);
+  in.velocity_radps.fill(w);
+  in.yaw_rate_radps = omega;
+  in.driving = driving;
+  in.motion_asked = true;
+  return in;
+}
+
+TEST(StuckMonitor, StalledWheelsAreAFaultAfterTheConfiguredTime) {
+  StuckMonitor m({.time_s = 3.0});
+  const StuckInput stalled = wheels(0.47, -0.01);  // what a rover against a wall showed
+  for (int k = 1; k < 192; ++k) ASSERT_FALSE(m.update(stalled).has_value()) << k;
+  EXPECT_DOUBLE_EQ(m.stalled_s(), 191.0 / 64.0);
+  const auto fault = m.update(stalled);  // the 192nd cycle: 3 s
+  ASSERT_TRUE(fault.has_value());
+  EXPECT_EQ(*fault, "stuck: the centre wheels turned at 2 % of their command for 3.0 s");
+  EXPECT_FALSE(m.update(stalled).has_value());  // reported once
+}
+
+TEST(StuckMonitor, ABreakInTheStallStartsItAgain) {
+  StuckMonitor m({.time_s = 3.0});
+  for (int k = 0; k < 150; ++k) m.update(wheels(0.47, 0.0));
+  m.update(wheels(0.47, 0.2));  // 43 % of the command: it moved
+  EXPECT_EQ(m.stalled_s(), 0.0);
+  for (int k = 1; k < 192; ++k) ASSERT_FALSE(m.update(wheels(0.47, 0.0)).has_value());
+  EXPECT_TRUE(m.update(wheels(0.47, 0.0)).has_value());
+}
+
+TEST(StuckMonitor, WheelsThatTurnOrARoverThatTurnsOrRestsAreNotStuck) {
+  StuckMonitor m;
+  for (int k = 0; k < 640; ++k) {
+    ASSERT_FALSE(m.update(wheels(1.2, 1.0)).has_value());          // rolling (or digging in)
+    ASSERT_FALSE(m.update(wheels(1.2, 0.0, 0.15)).has_value());    // a spin the gyro sees
+    ASSERT_FALSE(m.update(wheels(0.15, 0.0)).has_value());         // ν̄ below ν_min
+    ASSERT_FALSE(m.update(wheels(1.2, 0.0, 0.0, false)).has_value());  // not driving
+    StuckInput holding = wheels(0.5, 0.0);  // v1 = 0 on a slope: the wheels hold the rover
+    holding.motion_asked = false;
+    ASSERT_FALSE(m.update(holding).has_value());
+  }
+  StuckMonitor shipped;  // T = 5 s: 320 cycles
+  for (int k = 1; k < 320; ++k) ASSERT_FALSE(shipped.update(wheels(1.2, 0.0)).has_value()) << k;
+  EXPECT_TRUE(shipped.update(wheels(1.2, 0.0)).has_value());
+  StuckMonitor off({.time_s = 0.0});
+  for (int k = 0; k < 640; ++k) ASSERT_FALSE(off.update(wheels(1.2, 0.0)).has_value());
+}
+
+TEST(StuckMonitor, BadLimitsAndInputsAreRejectedByName) {
+  EXPECT_THROW(StuckMonitor({.time_s = -1.0}), std::invalid_argument);
+  EXPECT_THROW(StuckMonitor({.turning_share = 1.0}), std::invalid_argument);
+  EXPECT_THROW(StuckMonitor({.min_command_radps = 0.0}), std::invalid_argument);
+  StuckMonitor m;
+  StuckInput in = wheels(1.0, 0.0);
+  in.velocity_radps[1] = INFINITY;
+  try {
+    m.update(in);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("velocity_radps[1]"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace marsokhod::estimation
