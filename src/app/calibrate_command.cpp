@@ -56,6 +56,11 @@ std::optional<std::string> argument_problem(const CalibrateArgs& args,
       return "say where the rover is: --sim (the simulated rover) or --can URL";
     }
     if (!args.from.empty()) return "--from is for voltage-drop only";
+    if (args.ground && !args.sim) return "--ground is for the simulated rover (--sim) only";
+    if (args.ground && !sim::material_named(*args.ground)) {
+      return "--ground " + *args.ground +
+             " is unknown; use hard, sand, soft-sand or lunar-soil";
+    }
   } else if (args.from.empty()) {
     return "--from DIR is required (a scenario's --out folder with telemetry.csv)";
   }
@@ -69,6 +74,7 @@ std::unique_ptr<calibration::Bench> open_bench(const CalibrateArgs& args,
   if (args.sim) {
     sim::SimOptions sim_options = calibration::sim_bench_options(args.seed);
     if (info.on_battery) sim_options.supply = sim::SupplyKind::kBattery;
+    if (args.ground) sim_options.terrain.ground = *sim::material_named(*args.ground);
     return std::make_unique<calibration::SimBench>(config.params, sim_options, config.nominal);
   }
   return std::make_unique<calibration::BusBench>(config.params, bus::open_transport(args.can), in,

@@ -20,6 +20,7 @@ struct CalibrateArgs {
   bool force = false;
   std::string plot;                 // a folder for the measured data and its plots
   std::uint64_t seed = 1;           // the simulated unit
+  std::optional<std::string> ground;  // --sim: the ground's material (default hard ground)
   std::optional<double> duration_s;
   std::optional<int> icr;
   std::string from;                 // voltage-drop: a scenario's --out folder

@@ -62,12 +62,12 @@ void print_summary(const runner::SoakResult& r, std::ostream& out) {
                 "invariants checked: %llu over %llu cycles; joints at most %.4f rad outside (5.3)\n"
                 "joints the driver could not know (lost pulses): the truth at most %.4f rad "
                 "outside (5.3)\n"
-                "joints a restarted driver found outside (5.3) (left by the brown-out): at most "
-                "%.4f rad\n"
+                "joints while the driver was down (their run-on after a brown-out): at most %.4f "
+                "rad outside (5.3)\n"
                 "violations: %llu\n",
                 static_cast<unsigned long long>(r.evaluations),
                 static_cast<unsigned long long>(r.cycles), r.max_joint_excess_rad,
-                r.max_unknown_joint_excess_rad, r.max_restart_joint_excess_rad,
+                r.max_unknown_joint_excess_rad, r.max_down_joint_excess_rad,
                 static_cast<unsigned long long>(r.total_violations()));
   out << line;
   for (std::size_t k = 0; k < runner::kInvariantCount; ++k) {

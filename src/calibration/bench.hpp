@@ -156,7 +156,9 @@ class Bench {
 // The simulated rover on a bench of its own (time as a value, as fast as the machine allows),
 // with the options' terrain, supply and seed (sim_bench_options() gives the laboratory's: flat
 // hard ground, the tether at 24 V). arrange() places it on the stand, sets the tether's voltage
-// and straps weights to wheels through the simulator's own API, then lets it settle for 1 s.
+// and straps weights to wheels through the simulator's own API, then lets it settle for 1 s. On a
+// soft soil, setting the rover down from the stand first rakes the ground level
+// (RoverPhysics::level_soil), as an operator would before each run of Procedure 5.1.
 class SimBench final : public Bench {
  public:
   // `params` are the bench's (the driver side's, perhaps calibrated already); the simulated unit is
@@ -180,6 +182,7 @@ class SimBench final : public Bench {
   std::unique_ptr<sim::SimulatedRover> rover_;
   std::uint64_t seed_ = 0;
   sim::SupplyKind supply_;
+  std::string soft_soil_;  // the soil's name on a soft-soil ground, else empty
   std::int64_t period_us_ = 0;
   std::int64_t steps_ = 0;
 };

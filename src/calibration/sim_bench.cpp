@@ -28,7 +28,8 @@ SimBench::SimBench(const Params& params, const sim::SimOptions& options,
       rover_params_(std::make_unique<Params>(rover_params)),
       rover_(std::make_unique<sim::SimulatedRover>(*rover_params_, options)),
       seed_(options.seed),
-      supply_(options.supply) {}
+      supply_(options.supply),
+      soft_soil_(options.terrain.ground.soil ? options.terrain.ground.soil->name : "") {}
 
 SimBench::~SimBench() = default;
 
@@ -56,6 +57,8 @@ void SimBench::arrange(const BenchSetup& setup) {
   if (setup.placement == BenchSetup::Placement::kStand) {
     rover_->place_on_stand(setup.stand_roll_rad, setup.stand_pitch_rad);
   } else {
+    // Set down from the stand onto soft soil: on ground raked level, not into its last ruts.
+    if (rover_->on_stand()) rover_->level_soil();
     rover_->place_on_ground();
   }
   sim::SimFaults faults = rover_->faults();
@@ -86,7 +89,8 @@ double SimBench::measure_supply_v() { return rover_->electrics().supply_v; }
 
 std::string SimBench::source() const {
   return "simulator (seed " + std::to_string(seed_) + ", " +
-         (supply_ == sim::SupplyKind::kTether ? "tether" : "battery") + ")";
+         (supply_ == sim::SupplyKind::kTether ? "tether" : "battery") +
+         (soft_soil_.empty() ? "" : ", soft soil: " + soft_soil_) + ")";
 }
 
 }  // namespace marsokhod::calibration

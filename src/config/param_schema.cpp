@@ -286,7 +286,7 @@ constexpr ParamSpec kSafety[] = {
               "dropped drive on too long"},
     {.key = "dead_man_dog", .field = field<&SafetyParams::dead_man_dog>, .min = 0, .max = 255,
      .symbol = "dog", .source = "chapter 3.3",
-     .about = "µ8 stops the motors 0.2621·dog s after the last 0x80 (1.05 s)"},
+     .about = "µ8 stops the motors 0.2621·dog s after the last 0x80 (0.26 s)"},
     {.key = "max_duty_step", .field = field<&SafetyParams::max_duty_step>, .min = 0.001, .max = 2.0,
      .source = "chapter 3.2",
      .about = "|d^k − d^(k−1)| per cycle: consecutive duties differ little"},

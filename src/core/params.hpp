@@ -191,7 +191,7 @@ struct BehaviourParams {
 // Chapter 3.2's rules for duty cycles, Field Experiment 6.7 and chapter 3.3's dead man's switch.
 struct SafetyParams {
   double operator_timeout_s = 0.5;         // no operator input for this long ⇒ controlled stop
-  int dead_man_dog = 4;                    // µ8 stops the motors 0.2621·dog s after the last 0x80
+  int dead_man_dog = 1;                    // µ8 stops the motors 0.2621·dog s after the last 0x80
   double max_duty_step = 0.05;             // |d^k − d^(k−1)| per cycle ("must not differ much")
   double direction_change_duty = 0.02;     // drv may toggle only while |d| ≤ this ("pwm ≈ 0")
   int missed_responses_limit = 3;          // consecutive missing responses ⇒ fault, rover stopped

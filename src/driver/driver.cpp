@@ -67,6 +67,10 @@ void Driver::take_kept_joints() {
   for (std::size_t i = 0; i < kMotorCount; ++i) positions[i] = m.position_rad[i] + position_offset_rad_[i];
   std::string origin = "kept across a restart (";
   std::string refused;
+  // Procedure 4.3's motion after a restart may not drag a joint past its negative bound.
+  std::array<double, 2> take_up_travel{Startup::kNoTravelLimit, Startup::kNoTravelLimit};
+  const std::array<double, 2> negative_bound{params_->joints.front_min_rad,
+                                             params_->joints.rear_min_rad};
   if (!kept_->known) refused = "the driver before the restart did not know them either";
   for (std::size_t k = 0; k < 2 && kept_->known; ++k) {
     const std::size_t j = k == 0 ? kFrontJoint : kRearJoint;
@@ -79,6 +83,7 @@ void Driver::take_kept_joints() {
     }
     position_offset_rad_[j] = restored->shaft_rad - m.position_rad[j];
     positions[j] = restored->joint_rad;
+    take_up_travel[k] = restored->shaft_rad - negative_bound[k];
     char text[64];
     std::snprintf(text, sizeof text, "%sµ%zu moved %+.4f rad", k == 0 ? "" : ", ", j,
                   restored->shift_rad);
@@ -90,7 +95,7 @@ void Driver::take_kept_joints() {
   joints_restored_ = refused.empty();
   status_.joint_origin = refused.empty() ? origin + " while down)" : "unknown: " + refused;
   kept_.reset();
-  startup_.take_joints();
+  startup_.take_joints(take_up_travel);
 }
 
 // Procedure 4.3's motion ended where the joints stand after a restart: each shaft at the

@@ -35,3 +35,31 @@ double positive_bound_margin_rad(double backlash_uncertainty, double backlash_ra
                                  double shaft_position_rad, double joint_position_rad);
 
 }  // namespace marsokhod::driver
+
+namespace marsokhod::driver {
+
+// The dead man's run-on. The driver may die with the computer after any cycle (a brown-out);
+// µi then keeps the duty of its last request until µ8's dead man's switch sets pwm = 0, 0.2621·dog
+// s after the last 0x80 (chapter 3.3), and the motor needs its lag to stop after that. The joint
+// meanwhile runs on at the speed its motor has at that duty under the load it meets: v + l, with
+// v the commanded no-load velocity and l = w̄ − ν the shaft's load of (4.4) (positive for a unit
+// faster than the model or a load that pulls the joint along; negative for a loaded or stalled
+// motor, which runs on slower or not at all; the shaft's, not the joint's, so that a shaft
+// crossing its gap counts at its own speed). It runs for about T_run = 0.262144·dog s + the
+// joint's dead time (motion_controller.cpp). So a joint command toward a bound is limited to
+// what stops there:
+//   v ≤ (p_max − p)/T_run − l   moving up,      v ≥ −(p − p_min)/T_run − l   moving down,
+// never past 0 (the limit does not reverse a joint), with p the position the command starts
+// from. Away from a bound nothing is limited. Far from a bound the limit lies above the joints'
+// C and changes nothing; it binds only in the last part of an approach, where (4.15)'s braking
+// curve √(2μC·distance) is faster than distance/T_run (with the thesis' joints, μ 0.4 and
+// C = w/2 ≈ 0.7 rad/s, and the shipped dog = 1, T_run ≈ 0.3 s: the last 0.05 rad; with dog = 4
+// the last 0.6 rad, which makes every approach to a bound a slow creep). The load is taken to
+// last through the run-on: a motor stalled by an obstacle that gives way just as the computer
+// dies runs on faster than planned. With dog = 0 (no switch) nothing bounds the run-on and the
+// command is returned unchanged. Throws std::invalid_argument for a negative T_run or a load
+// that is not finite.
+double run_on_limited_radps(double command_radps, double position_rad, double min_rad,
+                            double max_rad, double run_on_s, double load_radps = 0.0);
+
+}  // namespace marsokhod::driver

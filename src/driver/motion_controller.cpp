@@ -19,6 +19,7 @@
 #include "core/mobility/joint_compensation.hpp"
 #include "core/mobility/lever_geometry.hpp"
 #include "core/mobility/summation.hpp"
+#include "core/protocol/messages.hpp"
 #include "core/tracking/clock.hpp"
 #include "driver/joint_margin.hpp"
 
@@ -94,6 +95,10 @@ MotionController::MotionController(const Params& params)
       estimator_(driver_estimator(params)),
       joints_(joint_bounds_with_backlash_margin(params.joints, params.motors)),
       joint_dead_time_s_(joint_dead_time_s(params)),
+      run_on_s_(params.safety.dead_man_dog > 0
+                    ? protocol::kDeadManTickUs * 1e-6 * params.safety.dead_man_dog +
+                          joint_dead_time_s_
+                    : 0.0),
       gait_(params.geometry, joints_, params.gaits, params.motors),
       gravity_(params.sensors.gravity_mps2) {}
 
@@ -320,6 +325,21 @@ MotorVector MotionController::walking_motion(JointCommands joints,
                                       bounds.front_min_rad, bounds.front_max_rad);
   joints.rear_radps = respect_bounds(joints.rear_radps, predicted_joint_position(kRearJoint, status),
                                      bounds.rear_min_rad, bounds.rear_max_rad);
+  // Should the computer die after this cycle, the joints run on for µ8's delay: keep that run
+  // inside (5.3) less the backlash margin (joint_margin.hpp), whatever the behaviours' bounds.
+  const behaviour::JointBounds hard = with_backlash_margin(
+      {params_->joints.front_min_rad, params_->joints.front_max_rad, params_->joints.rear_min_rad,
+       params_->joints.rear_max_rad},
+      status);
+  const auto shaft_load = [&](std::size_t motor) {
+    return input.shaft_velocity_radps[motor] - status.motors[motor].no_load_velocity_radps;
+  };
+  joints.front_radps = run_on_limited_radps(
+      joints.front_radps, predicted_joint_position(kFrontJoint, status), hard.front_min_rad,
+      hard.front_max_rad, run_on_s_, shaft_load(kFrontJoint));
+  joints.rear_radps = run_on_limited_radps(
+      joints.rear_radps, predicted_joint_position(kRearJoint, status), hard.rear_min_rad,
+      hard.rear_max_rad, run_on_s_, shaft_load(kRearJoint));
   joint_velocity_ = {joints.front_radps, joints.rear_radps};
   status.commands.v6_radps = joints.front_radps;
   status.commands.v7_radps = joints.rear_radps;

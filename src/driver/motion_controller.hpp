@@ -95,6 +95,9 @@ class MotionController {
   adaptation::NoLoadEstimator estimator_;
   JointParams joints_;  // (5.3) with the full backlash margin, for the gaits' strokes
   double joint_dead_time_s_;
+  // T_run of the dead man's run-on (joint_margin.hpp): 0.262144·dog s + the dead time; 0 with
+  // the switch off.
+  double run_on_s_;
   mobility::GaitSequencer gait_;
   mobility::DrivingIntent intent_ = mobility::DrivingIntent::kForward;
   behaviour::GravityEstimate gravity_;

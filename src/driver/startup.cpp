@@ -25,7 +25,10 @@ void Startup::advance() {
   }
 }
 
-void Startup::take_joints() { joints_taken_ = true; }
+void Startup::take_joints(std::array<double, 2> max_travel_rad) {
+  joints_taken_ = true;
+  for (std::size_t j = 0; j < 2; ++j) max_travel_rad_[j] = std::max(0.0, max_travel_rad[j]);
+}
 
 void Startup::on_configured(std::size_t motor) {
   configured_.at(motor) = true;
@@ -54,7 +57,7 @@ std::array<double, 2> Startup::calibrate(double time_s, const std::array<double,
   for (std::size_t j = 0; j < 2; ++j) {
     // The shaft moves toward the negative end of the gap; once it meets the joint it rests.
     const double u = params_->joints.backlash_uncertainty;
-    const double widest_gap = (on_slope ? 1.0 - u : 1.0 + u) * gap[j];
+    const double widest_gap = std::min((on_slope ? 1.0 - u : 1.0 + u) * gap[j], max_travel_rad_[j]);
     const bool settled = time_s - calibration_start_s_ >= kEngagementSettle_s;
     const bool slowed = std::abs(shaft_speed_radps[j]) <
                         kEngagedSpeedShare * std::abs(no_load_speed_radps[j]);

@@ -24,7 +24,12 @@
 // at rest until it has judged that state against the joints' first readings (take_joints()),
 // then runs the same motion: each shaft takes up its gap toward the negative end where the joint
 // stands, bent or not. The kept state gives p̄ there; the motion gives p = p̄ — a joint the
-// brown-out's abrupt stop let swing through its gap is found again.
+// brown-out's abrupt stop let swing through its gap is found again. A bent joint may stand at
+// its negative bound (a gait's stroke ends there) with its shaft already engaged, so that the
+// shaft never slows and would drag the joint out of (5.3) by the widest gap: there the shaft
+// travels at most p̄ − p_min (take_joints' max_travel_rad), which keeps the joint inside
+// whatever end of the gap the shaft stood at; a shaft stopped short leaves p = p̄ at most that
+// far above the truth, on the safe side of the negative bound.
 // Pure: the phase advances on the responses it is shown and on time given as a value.
 #pragma once
 
@@ -56,8 +61,10 @@ class Startup {
   // Phase 3 without Procedure 4.3: the joints come from a kept state (see above).
   void continue_joints() { continue_joints_ = true; }
   bool continues_joints() const { return continue_joints_; }
-  // The kept state was judged (restored or refused): phase 3's motion may begin.
-  void take_joints();
+  // The kept state was judged (restored or refused): phase 3's motion may begin, each shaft
+  // travelling at most max_travel_rad (front, rear) toward the negative end (see above).
+  void take_joints(std::array<double, 2> max_travel_rad = {kNoTravelLimit, kNoTravelLimit});
+  static constexpr double kNoTravelLimit = 1e9;
 
   // Phase 1: the controllers that answered 0xi3 this cycle.
   void on_configured(std::size_t motor);
@@ -83,6 +90,7 @@ class Startup {
   double calibration_start_s_ = 0.0;
   std::array<double, 2> shaft_start_rad_{};
   std::array<bool, 2> gap_closed_{};
+  std::array<double, 2> max_travel_rad_{kNoTravelLimit, kNoTravelLimit};
 };
 
 }  // namespace marsokhod::driver

@@ -37,8 +37,8 @@ void add_segment_stats(const SegmentRunner& run, Session& session, SoakResult& r
   r.max_joint_excess_rad = std::max(r.max_joint_excess_rad, run.checker().max_joint_excess_rad());
   r.max_unknown_joint_excess_rad =
       std::max(r.max_unknown_joint_excess_rad, run.checker().max_unknown_joint_excess_rad());
-  r.max_restart_joint_excess_rad =
-      std::max(r.max_restart_joint_excess_rad, run.checker().max_restart_joint_excess_rad());
+  r.max_down_joint_excess_rad =
+      std::max(r.max_down_joint_excess_rad, run.checker().max_down_joint_excess_rad());
   for (std::size_t k = 0; k < kFaultKindCount; ++k) {
     r.faults_injected[k] += run.faults().injected()[k];
     r.fault_active_s[k] += run.faults().active_s()[k];
@@ -148,7 +148,7 @@ nlohmann::ordered_json to_json(const SoakResult& r) {
   j["spurious_silent_faults"] = r.spurious_silent_faults;
   j["max_joint_excess_rad"] = r.max_joint_excess_rad;
   j["max_unknown_joint_excess_rad"] = r.max_unknown_joint_excess_rad;
-  j["max_restart_joint_excess_rad"] = r.max_restart_joint_excess_rad;
+  j["max_down_joint_excess_rad"] = r.max_down_joint_excess_rad;
   for (std::size_t k = 0; k < kFaultKindCount; ++k) {
     const char* name = fault_kind_name(static_cast<FaultKind>(k));
     j["faults_injected"][name] = r.faults_injected[k];

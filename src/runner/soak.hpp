@@ -68,7 +68,7 @@ struct SoakResult {
   std::uint64_t spurious_silent_faults = 0;
   double max_joint_excess_rad = 0.0;  // the farthest a joint went outside (5.3), as judged
   double max_unknown_joint_excess_rad = 0.0;  // the truth of joints the driver could not know
-  double max_restart_joint_excess_rad = 0.0;  // joints a restarted driver found outside (5.3)
+  double max_down_joint_excess_rad = 0.0;  // the joints outside (5.3) while the driver was down
   std::array<std::uint64_t, kInvariantCount> violations{};  // per invariant
   std::vector<SoakViolation> first_violations;               // the first of each, as found
   std::optional<std::filesystem::path> recording;            // of the very first

@@ -129,6 +129,7 @@ std::vector<Violation> InvariantChecker::check(const CycleView& c) {
   if (c.operator_command) last_command_us_ = c.time_us;
   if (!c.driver_running || c.status == nullptr) {
     check_driver_down(c, out);
+    check_joints_down(c, out);
     previous_ = {};  // a driver that comes back configures µ0–µ7 with pwm = 0 first
     previous_running_ = false;
     return out;
@@ -203,53 +204,70 @@ void InvariantChecker::check_duties(const CycleView& c,
   }
 }
 
+namespace {
+
+// (5.3) of the front and the rear joint.
+std::array<std::pair<double, double>, 2> joint_bounds(const JointParams& j) {
+  return {{{j.front_min_rad, j.front_max_rad}, {j.rear_min_rad, j.rear_max_rad}}};
+}
+
+double excess_over(const std::pair<double, double>& bounds, double p) {
+  return std::max(bounds.first - p, p - bounds.second);
+}
+
+std::string joint_bounds_detail(std::size_t k, double p, double excess,
+                                const std::pair<double, double>& bounds) {
+  return std::string(k == 0 ? "front" : "rear") +
+         format(" joint %.4f rad is %.4f rad outside (5.3) [%.4f, ", p, excess, bounds.first) +
+         format("%.4f]", bounds.second);
+}
+
+}  // namespace
+
 void InvariantChecker::check_joints(const CycleView& c, Report& out) {
   ++evaluations_;
-  const JointParams& j = params_->joints;
-  const std::array<std::pair<double, double>, 2> bounds{
-      {{j.front_min_rad, j.front_max_rad}, {j.rear_min_rad, j.rear_max_rad}}};
+  const auto bounds = joint_bounds(params_->joints);
   const std::array<std::size_t, 2> motors{kFrontJoint, kRearJoint};
-  const bool restarted = !previous_running_ && ever_ran_;
   const bool starting = c.status->mode == driver::DriverMode::kStartup;
   for (std::size_t k = 0; k < 2; ++k) {
     encoder_faulted_[k] = encoder_faulted_[k] || c.joint_encoder_fault[k];
     // A joint whose encoder lost pulses: only the driver's own estimate can be held to (5.3).
     const bool unknown = encoder_faulted_[k];
     const double truth = c.joint_angle_rad[k];
-    const double truth_excess = std::max(bounds[k].first - truth, truth - bounds[k].second);
-    if (unknown) max_unknown_joint_excess_rad_ = std::max(max_unknown_joint_excess_rad_, truth_excess);
+    if (unknown) {
+      max_unknown_joint_excess_rad_ =
+          std::max(max_unknown_joint_excess_rad_, excess_over(bounds[k], truth));
+    }
     // Until Procedure 4.3 has set p⁰ the driver has no estimate to hold (its p is the raw shaft).
     if (unknown && starting) continue;
     const double p = unknown ? c.status->motors[motors[k]].position_rad : truth;
-    const double excess = std::max(bounds[k].first - p, p - bounds[k].second);
-    if (restarted) {
-      inherited_excess_rad_[k] = std::max(0.0, excess);
-      recovery_deadline_us_[k].reset();
-      max_restart_joint_excess_rad_ = std::max(max_restart_joint_excess_rad_, excess);
-    }
-    // A joint the brown-out left outside: held to that excess until it is back, or the time
-    // after start-up is up.
-    double allowed = limits_.joint_tolerance_rad;
-    if (inherited_excess_rad_[k] > 0.0) {
-      if (!starting && !recovery_deadline_us_[k]) {
-        recovery_deadline_us_[k] = c.time_us + std::llround(limits_.recovery_s * 1e6);
-      }
-      const bool expired = recovery_deadline_us_[k] && c.time_us > *recovery_deadline_us_[k];
-      if (excess <= limits_.joint_tolerance_rad || expired) {
-        inherited_excess_rad_[k] = 0.0;
-      } else {
-        allowed = std::max(allowed, inherited_excess_rad_[k] + limits_.joint_tolerance_rad);
-      }
-    }
+    const double excess = excess_over(bounds[k], p);
     max_joint_excess_rad_ = std::max(max_joint_excess_rad_, excess);
-    if (excess > allowed) {
+    if (excess > limits_.joint_tolerance_rad) {
       add(out, Invariant::kJointBounds, c,
-          std::string(k == 0 ? "front" : "rear") +
-              format(" joint %.4f rad is %.4f rad outside (5.3) [%.4f, ", p, excess,
-                     bounds[k].first) +
-              format("%.4f]", bounds[k].second) +
-              (encoder_faulted_[k] ? " (the driver's estimate: its encoder lost pulses)" : "") +
-              (allowed > limits_.joint_tolerance_rad ? " (more than a restart found)" : ""));
+          joint_bounds_detail(k, p, excess, bounds[k]) +
+              (unknown ? " (the driver's estimate: its encoder lost pulses)" : ""));
+    }
+  }
+}
+
+void InvariantChecker::check_joints_down(const CycleView& c, Report& out) {
+  ++evaluations_;
+  const auto bounds = joint_bounds(params_->joints);
+  for (std::size_t k = 0; k < 2; ++k) {
+    encoder_faulted_[k] = encoder_faulted_[k] || c.joint_encoder_fault[k];
+    const double truth = c.joint_angle_rad[k];
+    const double excess = excess_over(bounds[k], truth);
+    if (encoder_faulted_[k]) {
+      // The driver steered by a wrong p before it went down: not the run-on's doing.
+      max_unknown_joint_excess_rad_ = std::max(max_unknown_joint_excess_rad_, excess);
+      continue;
+    }
+    max_down_joint_excess_rad_ = std::max(max_down_joint_excess_rad_, excess);
+    max_joint_excess_rad_ = std::max(max_joint_excess_rad_, excess);
+    if (excess > limits_.joint_tolerance_rad) {
+      add(out, Invariant::kJointBounds, c,
+          joint_bounds_detail(k, truth, excess, bounds[k]) + " while the driver is down");
     }
   }
 }

@@ -9,20 +9,18 @@
 //                   sent, pwm/icr; half a pwm count is the register's resolution.
 //   duty-step       |pwm^k − pwm^(k−1)| ≤ round(step·icr) counts (chapter 3.2), and a request that
 //                   toggles drv carries |d| ≤ direction_change_duty (+ half a count)
-//   joint-bounds    the joints themselves (truth) inside (5.3) by ≤ joint_tolerance_rad, also
-//                   after a brown-out (the restarted driver continues from the kept joint
-//                   state, driver/joint_memory.hpp). While the driver is down nothing holds the
-//                   joints: the motors run on at their last duties for µ8's delay, and a
-//                   loaded joint falls through its gap when they stop (up to 0.08 rad past
-//                   (5.3) in the sessions of seeds 1–20, tests/runner/session_restart_test).
-//                   A restarted driver inherits that: a joint it found outside is held to
-//                   the excess it had then (it must not grow) and must be back within the
-//                   tolerance by recovery_s (3 s) after start-up; the largest such excess is reported
-//                   (max_restart_joint_excess_rad). A joint whose encoder lost pulses since the
-//                   first driver started is judged by the driver's own estimate p instead: the
-//                   driver cannot know the truth then (lost pulses are not detected —
-//                   RELIABILITY.md), once its start-up has set p⁰; how far the truth went out
-//                   then is reported apart (max_unknown_joint_excess_rad)
+//   joint-bounds    the joints themselves (truth) inside (5.3) by ≤ joint_tolerance_rad, every
+//                   cycle: also while the driver is down with the computer (a brown-out), when
+//                   the motors run on at their last duties for µ8's delay (the driver limits
+//                   its joint commands near the bounds for that run-on, joint_margin.hpp), and
+//                   after it (the restarted driver continues from the kept joint state,
+//                   driver/joint_memory.hpp). The farthest excess while the driver was down is
+//                   reported apart (max_down_joint_excess_rad). A joint whose encoder lost
+//                   pulses since the first driver started is judged by the driver's own
+//                   estimate p instead: the driver cannot know the truth then (lost pulses are
+//                   not detected — RELIABILITY.md), once its start-up has set p⁰ (not while it is
+//                   down); how far the truth went out then is reported apart
+//                   (max_unknown_joint_excess_rad)
 //   missed-counted  the status' bus.missed equals the missing responses counted here from the
 //                   frames (a controller sent a request in the previous cycle and did not answer)
 //   silent-reported "µN silent" is in the faults by the cycle µN's answer has been missing for
@@ -88,14 +86,6 @@ struct CheckerLimits {
   double duty_ceiling = 1.0;          // the "≤ 1" of duty-bound (tests force violations with less)
   double joint_tolerance_rad = 0.01;  // the "inside (5.3) by ≤ 0.01 rad"
   int supply_cycles = 3;              // "reported within 3 cycles"
-  // How soon after its start-up a restarted driver must have brought back a joint the brown-out
-  // left outside (5.3). Start-up leaves each shaft at the negative end of its gap; bringing a
-  // joint back across a positive bound first takes the shaft across the whole gap ((1 + u)·b =
-  // 0.28 rad for the rear) and then the joint by its excess, both from rest under (4.16): the
-  // soak's worst case, a rear joint 0.27 rad below p7_min, took 1.05 s for the gap and 0.55 s
-  // for the joint. 3 s allows that with room; the sessions of seeds 1–20 (0.08 rad, no gap to
-  // cross) need 0.25 s.
-  double recovery_s = 3.0;
 };
 
 // One cycle as the checker sees it.
@@ -124,8 +114,8 @@ class InvariantChecker {
   double max_joint_excess_rad() const { return max_joint_excess_rad_; }
   // The truth's farthest excess over (5.3) of a joint the driver could not know (see above).
   double max_unknown_joint_excess_rad() const { return max_unknown_joint_excess_rad_; }
-  // The largest excess over (5.3) a restarted driver found (left by the time it was down).
-  double max_restart_joint_excess_rad() const { return max_restart_joint_excess_rad_; }
+  // The largest excess over (5.3) of a (known) joint while the driver was down.
+  double max_down_joint_excess_rad() const { return max_down_joint_excess_rad_; }
 
  private:
   struct SentDuty {
@@ -144,6 +134,7 @@ class InvariantChecker {
   void check_operator_stop(const CycleView& c, const std::array<SentDuty, kMotorCount>& d,
                            Report& out);
   void check_driver_down(const CycleView& c, Report& out);
+  void check_joints_down(const CycleView& c, Report& out);
   void check_restart(const CycleView& c, Report& out);
   void check_supply(const CycleView& c, std::optional<double> reported_v, Report& out);
 
@@ -155,10 +146,7 @@ class InvariantChecker {
   std::uint64_t evaluations_ = 0;
   double max_joint_excess_rad_ = 0.0;
   double max_unknown_joint_excess_rad_ = 0.0;
-  double max_restart_joint_excess_rad_ = 0.0;
-  // A joint a restarted driver found outside (5.3): the excess it may keep, until when.
-  std::array<double, 2> inherited_excess_rad_{};
-  std::array<std::optional<std::int64_t>, 2> recovery_deadline_us_{};
+  double max_down_joint_excess_rad_ = 0.0;
   bool previous_running_ = false;
   bool ever_ran_ = false;
   std::array<SentDuty, kMotorCount> previous_{};

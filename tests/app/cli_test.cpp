@@ -156,6 +156,16 @@ TEST_F(CliCalibrate, BadArgumentsAreOneLineUsageErrors) {
   EXPECT_NE(r.err.find("marsokhod calibrate voltage: "), std::string::npos) << r.err;
   r = cli({"--config", kConfig.c_str(), "calibrate", "voltage", "--sim", "--icr", "9"});
   EXPECT_EQ(r.status, 2);
+  r = cli({"--config", kConfig.c_str(), "calibrate", "spin", "--sim", "--ground", "mud"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--ground mud is unknown; use hard, sand, soft-sand or lunar-soil"),
+            std::string::npos)
+      << r.err;
+  r = cli({"--config", kConfig.c_str(), "calibrate", "spin", "--can", "socketcan:can0",
+           "--ground", "soft-sand"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--ground is for the simulated rover (--sim) only"), std::string::npos)
+      << r.err;
   r = cli({"--config", kConfig.c_str(), "--calibration", "/nonexistent.toml", "run"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/nonexistent.toml"), std::string::npos) << r.err;

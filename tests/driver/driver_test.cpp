@@ -61,15 +61,18 @@ TEST_F(DriverTest, StartupConfiguresThenArmsTheDeadManThenCalibrates) {
               (protocol::ConfigurationRequest{i, 511, 0, 0}));
   }
   EXPECT_EQ(driver.status().mode, DriverMode::kStartup);
-  // Cycle 2: every controller answered 0xi3 → 0xi0 with pwm 0, then 0x82 (dog 4) and 0x80.
+  // Cycle 2: every controller answered 0xi3 → 0xi0 with pwm 0, then 0x82 (the configured dog,
+  // 1 by default) and 0x80.
   auto second = cycle();
   ASSERT_EQ(second.size(), 10u);
   EXPECT_TRUE(std::holds_alternative<protocol::ControlRequest>(protocol::decode(second[0]).message()));
-  EXPECT_EQ(std::get<protocol::DeadManRequest>(protocol::decode(second[8]).message()).dog, 4);
+  EXPECT_EQ(std::get<protocol::DeadManRequest>(protocol::decode(second[8]).message()).dog,
+            params.safety.dead_man_dog);
+  EXPECT_EQ(params.safety.dead_man_dog, 1);
   EXPECT_EQ(driver.status().startup_phase, StartupPhase::kEnableDeadMan);
   cycle();
   EXPECT_EQ(driver.status().startup_phase, StartupPhase::kCalibrate);
-  EXPECT_EQ(rover.dog, 4);
+  EXPECT_EQ(rover.dog, 1);
   // Procedure 4.3: the joints turn negative until each shaft has covered its gap (0.052 rad
   // front, 0.250 rad rear; at d = −0.08 the shafts run at ζW(0.08)U/Ū ≈ 0.16 rad/s → over
   // 1.5 s for the rear), the wheels stay still.
@@ -449,8 +452,14 @@ TEST_F(RestartDriverTest, ContinuesFromTheKeptJointsWithoutProcedure43) {
   for (std::size_t k = 0; k < 2; ++k) {
     const std::size_t j = k == 0 ? kFrontJoint : kRearJoint;
     const double moved = rover.shaft_rad[j] - shaft_at_reading[j];
-    // The scripted shafts never meet a joint: the take-up ends after the widest gap, (1 + u)·b.
-    EXPECT_LT(moved, -(1.0 + params.joints.backlash_uncertainty) * params.motors.backlash_rad[j]) << j;
+    // The scripted shafts never meet a joint: the take-up ends after the widest gap, (1 + u)·b,
+    // or where the shaft reaches the joint's negative bound of (5.3) first (p̄ − p_min).
+    const double p_min = k == 0 ? params.joints.front_min_rad : params.joints.rear_min_rad;
+    const double travel = std::min(
+        (1.0 + params.joints.backlash_uncertainty) * params.motors.backlash_rad[j],
+        kept.joints[k].shaft_rad - p_min);
+    EXPECT_LT(moved, -travel) << j;
+    EXPECT_GT(s.motors[j].shaft_position_rad, p_min - 0.01) << j;
     EXPECT_NEAR(s.motors[j].shaft_position_rad, kept.joints[k].shaft_rad + moved, 2 * kOneCount) << j;
     EXPECT_DOUBLE_EQ(s.motors[j].position_rad, s.motors[j].shaft_position_rad) << j;
   }

@@ -25,10 +25,12 @@ struct Unit {
 };
 
 // Drives the rear joint at v7 for `seconds` from p7 (the shaft on the gap's negative end, as after
-// Procedure 4.3); returns the true joint's lowest and highest positions.
+// Procedure 4.3); returns the true joint's lowest and highest positions. With `die_after` ≥ 0
+// the computer dies after that cycle's request: the motor keeps its duty until µ8's dead man's
+// switch sets pwm = 0, 0.262144·dog s later, and then stops with its lag.
 std::pair<double, double> drive_rear_joint(const Unit& unit, double start_rad, double v7_radps,
-                                           double seconds) {
-  const Params params;
+                                           double seconds, int die_after = -1,
+                                           const Params& params = Params{}) {
   const double h = params.cycle.period_s;
   const double b = params.motors.backlash_rad[kRearJoint] * unit.gap_share;
   const adaptation::MotorCurve curve(
@@ -47,7 +49,8 @@ std::pair<double, double> drive_rear_joint(const Unit& unit, double start_rad, d
   double highest = joint;
   RuntimeSettings settings = runtime_settings_from(params);
   settings.switches.slant_response = false;
-  for (int k = 0; k < static_cast<int>(seconds / h); ++k) {
+  // One cycle of the driver: its request, the duty step rule, the shaft one cycle late.
+  const auto drive_cycle = [&] {
     MotionInput in;
     in.period_s = h;
     in.shaft_position_rad = measured;
@@ -62,9 +65,19 @@ std::pair<double, double> drive_rear_joint(const Unit& unit, double start_rad, d
     motion.record_sent(sent, in.supply_v);
     measured[kRearJoint] = shaft[kRearJoint];
     measured_speed[kRearJoint] = speed;
-    const double target = unit.speed_share *
-                          adaptation::no_load_velocity(curve, duty, params.motors.scale[kRearJoint],
-                                                       in.supply_v, params.motors.nominal_supply_v);
+  };
+  const double dead_man_s = 0.262144 * params.safety.dead_man_dog;
+  for (int k = 0; k < static_cast<int>(seconds / h); ++k) {
+    if (die_after < 0 || k <= die_after) {
+      drive_cycle();
+    } else if ((k - die_after) * h >= dead_man_s) {
+      duty = 0.0;  // µ8 has stopped the motor
+    }
+    const double target =
+        unit.speed_share * adaptation::no_load_velocity(curve, duty,
+                                                        params.motors.scale[kRearJoint],
+                                                        params.motors.nominal_supply_v,
+                                                        params.motors.nominal_supply_v);
     for (int step = 0; step < 16; ++step) {
       const double dt = h / 16.0;
       speed += (target - speed) * dt / unit.lag_s;
@@ -94,6 +107,55 @@ TEST_P(JointBoundsOnEveryUnit, AFullSpeedContractionStopsInsideTheLowerBound) {
   EXPECT_GE(lowest, params.joints.rear_min_rad - 0.01);
   EXPECT_LE(lowest, params.joints.rear_min_rad + 0.05);
   EXPECT_LE(highest, params.joints.rear_max_rad + 0.01);
+}
+
+// The computer dies at any cycle of a full-speed approach to either bound: the joint runs on
+// for µ8's delay at its last duty and still stops inside (5.3) by the tolerance, with the
+// shipped dog = 1 (0.26 s) and with dog = 4 (1.05 s). Without the run-on limit a joint at
+// C = 0.7 rad/s would run 0.18 rad on (0.73 rad with dog = 4).
+TEST_P(JointBoundsOnEveryUnit, AJointThatRunsOnAfterTheComputerDiesStopsInsideTheBounds) {
+  for (const int dog : {1, 4}) {
+    Params params;
+    params.safety.dead_man_dog = dog;
+    const double run_on_s = 0.262144 * dog;
+    const int cycles = static_cast<int>(5.0 / params.cycle.period_s);
+    const int after = static_cast<int>((run_on_s + 1.0) / params.cycle.period_s);
+    for (int die = 0; die < cycles; die += 4) {
+      const double seconds = (die + after) * params.cycle.period_s;
+      const auto up =
+          drive_rear_joint(GetParam(), params.joints.rear_min_rad, 1.4, seconds, die, params);
+      ASSERT_LE(up.second, params.joints.rear_max_rad + 0.01)
+          << "extending, dog " << dog << ", died after cycle " << die;
+      const auto down = drive_rear_joint(GetParam(), 2.2, -1.4, seconds, die, params);
+      ASSERT_GE(down.first, params.joints.rear_min_rad - 0.01)
+          << "contracting, dog " << dog << ", died after cycle " << die;
+    }
+  }
+}
+
+TEST(RunOnLimit, ACommandTowardABoundStopsThereWithinTheRunOnTime) {
+  // p = 2.0 of [1.2121, 2.55], T_run = 0.5 s: up at most 0.55/0.5 = 1.1 rad/s, down 1.5758.
+  EXPECT_DOUBLE_EQ(run_on_limited_radps(2.0, 2.0, 1.2121, 2.55, 0.5), 0.55 / 0.5);
+  EXPECT_DOUBLE_EQ(run_on_limited_radps(0.3, 2.0, 1.2121, 2.55, 0.5), 0.3);  // below the limit
+  EXPECT_DOUBLE_EQ(run_on_limited_radps(-2.0, 2.0, 1.2121, 2.55, 0.5), -(2.0 - 1.2121) / 0.5);
+  // Past a bound: nothing further out, back in freely.
+  EXPECT_EQ(run_on_limited_radps(0.2, 2.6, 1.2121, 2.55, 0.5), 0.0);
+  EXPECT_EQ(run_on_limited_radps(-0.2, 2.6, 1.2121, 2.55, 0.5), -0.2);
+  EXPECT_EQ(run_on_limited_radps(0.2, 1.1, 1.2121, 2.55, 0.5), 0.2);
+  // No dead man's switch (dog = 0): nothing bounds a run-on, the command stays.
+  EXPECT_EQ(run_on_limited_radps(2.0, 2.5, 1.2121, 2.55, 0.0), 2.0);
+  // A joint running 0.2 rad/s faster than its no-load velocity runs on that much faster: the
+  // limit comes down by 0.2 rad/s; a loaded one running 0.2 rad/s slower may be commanded that
+  // much more (its run-on is the same).
+  EXPECT_DOUBLE_EQ(run_on_limited_radps(2.0, 2.0, 1.2121, 2.55, 0.5, 0.2), 0.55 / 0.5 - 0.2);
+  EXPECT_DOUBLE_EQ(run_on_limited_radps(2.0, 2.0, 1.2121, 2.55, 0.5, -0.2), 0.55 / 0.5 + 0.2);
+  EXPECT_DOUBLE_EQ(run_on_limited_radps(-2.0, 2.0, 1.2121, 2.55, 0.5, 0.2),
+                   -(2.0 - 1.2121) / 0.5 - 0.2);
+  EXPECT_DOUBLE_EQ(run_on_limited_radps(-2.0, 2.0, 1.2121, 2.55, 0.5, -0.2),
+                   -(2.0 - 1.2121) / 0.5 + 0.2);
+  // A load that alone runs the joint to the bound in T_run: no command toward it at all.
+  EXPECT_EQ(run_on_limited_radps(0.5, 2.5, 1.2121, 2.55, 0.5, 0.2), 0.0);
+  EXPECT_THROW(run_on_limited_radps(1.0, 2.0, 1.2121, 2.55, -0.1), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -171,6 +233,34 @@ TEST(StartupProcedure43, OnASlopeAShaftThatNeverSlowsStopsAtTheNarrowestGap) {
     const double limit = (on_slope ? 0.85 : 1.15) * 0.25;
     EXPECT_GE(travel, limit) << on_slope;
     EXPECT_LT(travel, limit + 2 * 0.14 * h + 1e-9) << on_slope;  // the test moves a cycle late
+  }
+}
+
+// After a restart the rear joint stands 0.03 rad above p7_min with its shaft engaged at the
+// negative end of the gap (a gait contracted it there): a shaft that never slows may travel only
+// p̄ − p7_min = 0.03 rad, not the widest gap, and one already past the bound not at all.
+TEST(StartupProcedure43, ARestartedShaftDoesNotDragItsJointPastTheNegativeBound) {
+  const Params params;
+  for (const double start : {1.2121 + 0.03, 1.2121 - 0.004}) {
+    Startup startup(params);
+    startup.continue_joints();
+    for (std::size_t i = 0; i < kMotorCount; ++i) startup.on_configured(i);
+    startup.on_dead_man_acknowledged();
+    const double h = params.cycle.period_s;
+    std::array<double, 2> shaft{-1.8, start};
+    EXPECT_EQ(startup.calibrate(0.0, shaft, {}, {}), (std::array<double, 2>{0.0, 0.0}))
+        << "the kept state not judged yet: at rest";
+    startup.take_joints({shaft[0] - params.joints.front_min_rad,
+                         shaft[1] - params.joints.rear_min_rad});
+    std::array<double, 2> duty{-1.0, -1.0};
+    for (int k = 0; k < 400 && startup.phase() == StartupPhase::kCalibrate; ++k) {
+      std::array<double, 2> speed{duty[0] == 0.0 ? 0.0 : -0.14, duty[1] == 0.0 ? 0.0 : -0.14};
+      duty = startup.calibrate(k * h, shaft, speed, {-0.14, -0.14});
+      shaft[1] += speed[1] * h;
+    }
+    EXPECT_EQ(startup.phase(), StartupPhase::kDone);
+    EXPECT_GE(shaft[1], std::min(start, params.joints.rear_min_rad) - 2 * 0.14 * h - 1e-9)
+        << start;  // the test moves a cycle late
   }
 }
 

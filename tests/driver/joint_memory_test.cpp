@@ -25,13 +25,21 @@ std::optional<RestoredJoint> restore(const KeptJoint& k, tracking::EncoderReadin
   return restore_joint(k, now, kGap, params, kFrontJoint, why);
 }
 
-// The shipped configuration's numbers: w = 2.827 rad/s, U up to 1.25·Ū, h = 0.0156 s, dog = 4
-// (1.048576 s), max_duty_step 0.05, direction_change_duty 0.02.
+// The shipped configuration's numbers: w = 2.827 rad/s, U up to 1.25·Ū, h = 0.0156 s, dog = 1
+// (0.262144 s), max_duty_step 0.05, direction_change_duty 0.02; and dog = 4 (1.048576 s), the
+// longest switch µ8 is configured with in the tests below.
 constexpr double kW = 1.25 * 2.827;
-constexpr double kDeadMan = 4 * 0.262144;
+constexpr double kDeadMan = 0.262144;
+
+Params with_dog(std::uint8_t dog) {
+  Params params;
+  params.safety.dead_man_dog = dog;
+  return params;
+}
 
 TEST(JointMemory, TheDutyLeftBoundsTheMovement) {
   const Params params;
+  ASSERT_EQ(params.safety.dead_man_dog, 1);
   // At rest: a cycle at the step before it, and the rebound.
   const ShiftBounds rest = kept_joint_shift_bounds(params, 0.0);
   EXPECT_DOUBLE_EQ(rest.along_rad, kW * 0.05 * 2 * 0.0156 + kReboundRad);
@@ -40,11 +48,16 @@ TEST(JointMemory, TheDutyLeftBoundsTheMovement) {
   const ShiftBounds slow = kept_joint_shift_bounds(params, -0.045);
   EXPECT_DOUBLE_EQ(slow.along_rad, kW * (0.045 * (kDeadMan + 0.0156) + 0.095 * 2 * 0.0156) + kReboundRad);
   EXPECT_DOUBLE_EQ(slow.against_rad, kW * 0.02 * 2 * 0.0156 + kReboundRad);
+  // Four times the switch's delay: the part at d grows fourfold, the rest stays.
+  const ShiftBounds slow4 = kept_joint_shift_bounds(with_dog(4), -0.045);
+  EXPECT_DOUBLE_EQ(slow4.along_rad,
+                   kW * (0.045 * (4 * kDeadMan + 0.0156) + 0.095 * 2 * 0.0156) + kReboundRad);
+  EXPECT_DOUBLE_EQ(slow4.against_rad, slow.against_rad);
   // Fast: half the counter's range (32768 pulses) bounds it; so it does with the switch off.
-  EXPECT_DOUBLE_EQ(kept_joint_shift_bounds(params, 0.5).along_rad, 32768 * kCount);
-  Params off = params;
-  off.safety.dead_man_dog = 0;
-  EXPECT_DOUBLE_EQ(kept_joint_shift_bounds(off, 0.0).along_rad, 32768 * kCount);
+  EXPECT_DOUBLE_EQ(kept_joint_shift_bounds(with_dog(4), 0.5).along_rad, 32768 * kCount);
+  EXPECT_DOUBLE_EQ(kept_joint_shift_bounds(params, 0.5).along_rad,
+                   kW * (0.5 * (kDeadMan + 0.0156) + 0.55 * 2 * 0.0156) + kReboundRad);
+  EXPECT_DOUBLE_EQ(kept_joint_shift_bounds(with_dog(0), 0.0).along_rad, 32768 * kCount);
 }
 
 TEST(JointMemory, UnchangedRegistersGiveTheKeptState) {
@@ -57,11 +70,14 @@ TEST(JointMemory, UnchangedRegistersGiveTheKeptState) {
 }
 
 TEST(JointMemory, ShaftThatCoastedOnDragsTheJointAcrossItsGap) {
-  // d = +0.05, dir = 0 (positive), 1500 pulses on while µ8's switch let it run: 0.08195 rad. The
-  // shaft stood at the joint's negative end (p̄ = p), so it crosses the gap of 0.05 rad and drags
-  // the joint by 0.08195 − 0.05 (4.1); the counter wraps on the way (65000 → 964).
+  // d = +0.05, dir = 0 (positive), 1500 pulses on while µ8's switch (dog = 4, 1.05 s) let it run:
+  // 0.08195 rad. The shaft stood at the joint's negative end (p̄ = p), so it crosses the gap of
+  // 0.05 rad and drags the joint by 0.08195 − 0.05 (4.1); the counter wraps on the way (65000 →
+  // 964). With dog = 1 the same duty cannot have run that far, and the registers are refused.
   std::string why;
-  const auto r = restore(kept(65000, 7, false, -1.5, -1.5, 0.05), {964, 7, false}, why);
+  EXPECT_FALSE(restore(kept(65000, 7, false, -1.5, -1.5, 0.05), {964, 7, false}, why).has_value());
+  EXPECT_NE(why.find("more than it can at the duty 0.050"), std::string::npos) << why;
+  const auto r = restore(kept(65000, 7, false, -1.5, -1.5, 0.05), {964, 7, false}, why, with_dog(4));
   ASSERT_TRUE(r.has_value()) << why;
   EXPECT_DOUBLE_EQ(r->shift_rad, 1500 * kCount);
   EXPECT_DOUBLE_EQ(r->shaft_rad, -1.5 + 1500 * kCount);

@@ -41,17 +41,18 @@ JointErrors joint_errors(const Session& session, const Params& params) {
   return e;
 }
 
-// Runs for `seconds` with `input` every cycle; returns the largest errors seen while driving.
+// Runs for `seconds` with `input` every cycle; returns the largest errors seen: the estimate's
+// while driving, the truth's excess over (5.3) in every cycle (the driver down or starting too).
 JointErrors run(Session& session, const Params& params, const driver::OperatorInput& input,
                 double seconds) {
   JointErrors worst;
   const auto cycles = static_cast<int>(seconds / params.cycle.period_s);
   for (int k = 0; k < cycles; ++k) {
     session.step(&input);
-    if (!session.driver_running() || session.status().mode != driver::DriverMode::kDriving) continue;
     const JointErrors e = joint_errors(session, params);
-    worst.estimate_rad = std::max(worst.estimate_rad, e.estimate_rad);
     worst.excess_rad = std::max(worst.excess_rad, e.excess_rad);
+    if (!session.driver_running() || session.status().mode != driver::DriverMode::kDriving) continue;
+    worst.estimate_rad = std::max(worst.estimate_rad, e.estimate_rad);
   }
   return worst;
 }
@@ -73,11 +74,18 @@ TEST_P(SessionRestart, ContinuesFromTheKeptJointsAfterABrownOut) {
             0.3);
   const JointErrors last = joint_errors(session, params);
   session.rover().force_brownout();
-  // The computer reboots (30 s); the operator goes on asking for the gait.
-  run(session, params, gait_input(1.0), 31.0);
+  // The computer reboots (30 s); the operator goes on asking for the gait. The motors ran on
+  // at their last duties for µ8's delay (0.26 s): the driver had limited its joint commands for
+  // that (joint_margin.hpp), so the joints stopped inside (5.3).
+  EXPECT_LE(run(session, params, gait_input(1.0), 31.0).excess_rad, 0.01);
   ASSERT_TRUE(session.driver_running());
   EXPECT_EQ(session.driver_restarts(), 1U);
-  while (session.status().mode == driver::DriverMode::kStartup) session.step(nullptr);
+  double startup_excess_rad = 0.0;
+  while (session.status().mode == driver::DriverMode::kStartup) {
+    session.step(nullptr);
+    startup_excess_rad = std::max(startup_excess_rad, joint_errors(session, params).excess_rad);
+  }
+  EXPECT_LE(startup_excess_rad, 0.01) << "the take-up of the gaps dragged a joint out of (5.3)";
   const auto& s = session.status();
   EXPECT_TRUE(s.joints_known);
   EXPECT_EQ(s.joint_origin.rfind("kept across a restart (µ6 moved ", 0), 0U) << s.joint_origin;
@@ -87,12 +95,6 @@ TEST_P(SessionRestart, ContinuesFromTheKeptJointsAfterABrownOut) {
   const JointErrors restored = joint_errors(session, params);
   EXPECT_LE(restored.estimate_rad, std::max(last.estimate_rad, before.estimate_rad) + 0.005)
       << "before the brown-out " << last.estimate_rad << " rad";
-  // While the driver was down the motors ran on at their last duties for µ8's delay (1.05 s) and
-  // a loaded joint fell through its gap when they stopped: on some units the restart finds a
-  // joint up to 0.08 rad outside (5.3). The driver takes it back inside within a second, never
-  // further out, and the gait goes on inside (5.3) as before the brown-out.
-  const JointErrors recovering = run(session, params, gait_input(1.0), 1.0);
-  EXPECT_LE(recovering.excess_rad, std::max(restored.excess_rad, 0.0) + 0.01);
   const JointErrors after = run(session, params, gait_input(1.0), 12.0);
   EXPECT_LE(after.excess_rad, 0.01);
   EXPECT_LE(after.estimate_rad, before.estimate_rad + 0.01);

@@ -346,6 +346,10 @@ void RoverPhysics::place_on_ground() {
   mj_forward(&m, &d);
 }
 
+void RoverPhysics::level_soil() {
+  if (impl_->soft_soil) impl_->soft_soil->level();
+}
+
 bool RoverPhysics::on_stand() const { return impl_->model->eq_active[impl_->ids.stand_weld] != 0; }
 
 void RoverPhysics::strap_weight(std::size_t wheel, double peak_torque_nm) {

@@ -94,6 +94,10 @@ class RoverPhysics {
   void place_on_stand(double roll_rad, double pitch_rad);
   void place_on_ground();
   bool on_stand() const;
+  // The bench's rake: a soft soil's ground (rover_soft_soil.cpp) back to its initial level, its
+  // ruts, compaction and books cleared, the wheels' shear states with them; nothing on rigid
+  // ground. (A sandbox raked level before the rover is set down on it again.)
+  void level_soil();
   // A weight strapped to a wheel's rim (Procedure 4.13): a gravity torque peak·sin φ on the
   // wheel's hinge, φ its angle (0: the weight at the top). 0 removes it. The stand keeps the
   // chassis level, so φ is measured from the vertical.

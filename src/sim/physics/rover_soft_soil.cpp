@@ -8,7 +8,8 @@
 // The grid: 2 cm cells from x = −3 m to 9 m and y = −3 m to 3 m around the start, level with the
 // ground plane (flat, or x·tan(slope) on a slope). Beyond it the edge cells' heights continue.
 // Blades: mirror-symmetric across the rover's middle — the left wheels right-handed, the right
-// wheels left-handed (docs/simulator.md); rim radius = wheel radius − 1 cm of blade.
+// wheels left-handed (docs/simulator.md), inclined at the geometry's blade_inclination_rad (i);
+// rim radius = wheel radius − 1 cm of blade.
 #include <cmath>
 
 #include "sim/physics/chassis_geometry.hpp"
@@ -38,6 +39,7 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
     wheels[wheel].rim_radius_m = params.geometry.wheel_radius_m - kBladeHeightM;
     wheels[wheel].blade_height_m = kBladeHeightM;
+    wheels[wheel].blade_inclination_rad = params.geometry.blade_inclination_rad;
     wheels[wheel].width_m = kWheelWidthM;
     wheels[wheel].handedness =
         is_left_wheel(wheel) ? soil::BladeHandedness::kRight : soil::BladeHandedness::kLeft;

@@ -121,10 +121,7 @@ class TableReader {
 Material material_from(const toml::node* node, TableReader& owner, const Material& fallback) {
   if (node == nullptr) return fallback;
   if (const std::optional<std::string> name = node->value<std::string>()) {
-    if (*name == "hard") return hard_ground();
-    if (*name == "sand") return sand();
-    if (*name == "soft-sand") return soft_sand();
-    if (*name == "lunar-soil") return soft_lunar_soil();
+    if (const std::optional<Material> named = material_named(*name)) return *named;
     owner.fail("material",
                "= \"" + *name +
                    "\" is unknown; use \"hard\", \"sand\", \"soft-sand\", \"lunar-soil\" or a table "
@@ -259,6 +256,14 @@ Material soft_sand() {
   Material material{0.5, 0.0, 0.0, 0.0};
   material.soil = soil::dry_sand();
   return material;
+}
+
+std::optional<Material> material_named(std::string_view name) {
+  if (name == "hard") return hard_ground();
+  if (name == "sand") return sand();
+  if (name == "soft-sand") return soft_sand();
+  if (name == "lunar-soil") return soft_lunar_soil();
+  return std::nullopt;
 }
 
 Material soft_lunar_soil() {

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sim/physics/pgm_image.hpp"
@@ -57,6 +58,9 @@ Material sand();
 // μ = 0.5 for the chassis.
 Material soft_sand();
 Material soft_lunar_soil();
+// The material of a terrain file's name: "hard", "sand", "soft-sand" or "lunar-soil"; nullopt
+// for another name.
+std::optional<Material> material_named(std::string_view name);
 
 enum class TerrainKind { kFlat, kSlope, kObstacles, kHeightfield };
 

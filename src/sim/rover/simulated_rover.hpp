@@ -92,6 +92,7 @@ class SimulatedRover {
   }
   void place_on_ground() { physics_.place_on_ground(); }
   bool on_stand() const { return physics_.on_stand(); }
+  void level_soil() { physics_.level_soil(); }  // RoverPhysics::level_soil
   void strap_weight(std::size_t wheel, double peak_torque_nm) {
     physics_.strap_weight(wheel, peak_torque_nm);
   }

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "sim/soil/angle_steps.hpp"
+
 namespace marsokhod::sim::soil {
 namespace {
 
@@ -22,7 +24,18 @@ SoftSoil::SoftSoil(SoilParams soil, GridSpec grid,
                    const std::vector<WheelGeometry>& wheels)
     : soil_(soil), grid_(grid, soil, surface_m) {
   contacts_.reserve(wheels.size());
-  for (const WheelGeometry& wheel : wheels) contacts_.emplace_back(soil_, wheel);
+  std::size_t lanes = 0;
+  for (const WheelGeometry& wheel : wheels) {
+    contacts_.emplace_back(soil_, wheel);
+    lanes = std::max(lanes, static_cast<std::size_t>(wheel.lanes));
+  }
+  lane_sinkage_.resize(lanes);
+  lane_exit_.resize(lanes);
+}
+
+void SoftSoil::level() {
+  grid_.level();
+  for (WheelSoilContact& contact : contacts_) contact = WheelSoilContact(soil_, contact.wheel());
 }
 
 Vec3 SoftSoil::ground_normal(const WheelKinematics& kinematics, std::size_t wheel) const {
@@ -36,17 +49,19 @@ Vec3 SoftSoil::ground_normal(const WheelKinematics& kinematics, std::size_t whee
 double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
                                 double radius_m, double sinkage_m) const {
   const double entry = std::acos(1.0 - std::clamp(sinkage_m, 0.0, radius_m) / radius_m);
-  const auto height = [&](double theta) {  // of the rim above the soil
-    const Vec3 rim =
-        axis_point + (radius_m * std::sin(theta)) * forward - (radius_m * std::cos(theta)) * up;
+  const auto height = [&](double sin_theta, double cos_theta) {  // of the rim above the soil
+    const Vec3 rim = axis_point + (radius_m * sin_theta) * forward - (radius_m * cos_theta) * up;
     return rim[2] - grid_.surface_m(rim[0], rim[1]);
   };
-  const double bottom = std::max(height(0.0), 0.0);
-  const auto clearance = [&](double theta) { return height(theta) - bottom - kTouchM; };
-  double previous_theta = 0.0, previous = clearance(0.0);
-  for (int k = 1; k <= kExitSteps; ++k) {
+  const double bottom = std::max(height(0.0, 1.0), 0.0);
+  const auto clearance = [&](double sin_theta, double cos_theta) {
+    return height(sin_theta, cos_theta) - bottom - kTouchM;
+  };
+  double previous_theta = 0.0, previous = clearance(0.0, 1.0);
+  AngleSteps angle = AngleSteps::multiples(-entry / kExitSteps);
+  for (int k = 1; k <= kExitSteps; ++k, angle.advance()) {
     const double theta = -entry * k / kExitSteps;
-    const double current = clearance(theta);
+    const double current = clearance(angle.sin(), angle.cos());
     if (current > 0.0) {
       return previous_theta + (theta - previous_theta) * (-previous) / (current - previous);
     }
@@ -56,18 +71,21 @@ double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, con
   return -entry;
 }
 
-SoftSoil::LaneContacts SoftSoil::lane_contacts(std::size_t wheel,
-                                               const WheelKinematics& kinematics) const {
+// Lane sinkages and (unless exit_rad is empty) exit angles into the spans, one per lane; the
+// number of lanes in contact.
+int SoftSoil::find_lane_contacts(std::size_t wheel, const WheelKinematics& kinematics,
+                                 const Vec3& normal, std::span<double> sinkage_m,
+                                 std::span<double> exit_rad) const {
   const WheelSoilContact& contact = contacts_.at(wheel);
-  const auto lanes = static_cast<std::size_t>(contact.wheel().lanes);
-  LaneContacts result{std::vector<double>(lanes, 0.0), std::vector<double>(lanes, 0.0)};
-  const Vec3 normal = ground_normal(kinematics, wheel);
+  std::fill(sinkage_m.begin(), sinkage_m.end(), 0.0);
+  std::fill(exit_rad.begin(), exit_rad.end(), 0.0);
   const Vec3 rolling = cross(kinematics.axle, normal);
-  if (norm(rolling) < 1e-9) return result;
+  if (norm(rolling) < 1e-9) return 0;
   const Vec3 forward = (static_cast<double>(contact.direction()) / norm(rolling)) * rolling;
   const Vec3 up = (1.0 / norm(rolling)) * cross(rolling, kinematics.axle);
   const double radius = contact.wheel().rim_radius_m;
-  for (std::size_t lane = 0; lane < lanes; ++lane) {
+  int touching = 0;
+  for (std::size_t lane = 0; lane < sinkage_m.size(); ++lane) {
     const Vec3 axis_point =
         kinematics.center_m + contact.lane_offset_m(static_cast<int>(lane)) * kinematics.axle;
     const Vec3 lowest = axis_point - radius * up;
@@ -76,12 +94,23 @@ SoftSoil::LaneContacts SoftSoil::lane_contacts(std::size_t wheel,
     const double gap = std::max(lowest[2] - surface, 0.0);
     const double depth =
         undisturbed - std::min(lowest[2], surface) - soil_.unloading_stiffness_ratio * gap;
-    result.sinkage_m[lane] = depth * normal[2];
-    if (result.sinkage_m[lane] > 0.0) {
-      result.exit_rad[lane] =
-          exit_angle_rad(axis_point, forward, up, radius, result.sinkage_m[lane]);
+    sinkage_m[lane] = depth * normal[2];
+    if (sinkage_m[lane] > 0.0) {
+      if (!exit_rad.empty()) {
+        exit_rad[lane] = exit_angle_rad(axis_point, forward, up, radius, sinkage_m[lane]);
+      }
+      ++touching;
     }
   }
+  return touching;
+}
+
+SoftSoil::LaneContacts SoftSoil::lane_contacts(std::size_t wheel,
+                                               const WheelKinematics& kinematics) const {
+  const auto lanes = static_cast<std::size_t>(contacts_.at(wheel).wheel().lanes);
+  LaneContacts result{std::vector<double>(lanes, 0.0), std::vector<double>(lanes, 0.0)};
+  find_lane_contacts(wheel, kinematics, ground_normal(kinematics, wheel), result.sinkage_m,
+                     result.exit_rad);
   return result;
 }
 
@@ -95,20 +124,26 @@ std::vector<WheelWrench> SoftSoil::step(std::span<const WheelKinematics> wheels,
   std::vector<WheelWrench> wrenches;
   wrenches.reserve(wheels.size());
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    const LaneContacts lanes = lane_contacts(i, wheels[i]);
-    wrenches.push_back(contacts_[i].step(wheels[i], ground_normal(wheels[i], i), lanes.sinkage_m,
-                                         lanes.exit_rad, dt_s));
+    const auto lanes = static_cast<std::size_t>(contacts_[i].wheel().lanes);
+    const std::span<double> sinkage(lane_sinkage_.data(), lanes);
+    const std::span<double> exit(lane_exit_.data(), lanes);
+    const Vec3 normal = ground_normal(wheels[i], i);
+    find_lane_contacts(i, wheels[i], normal, sinkage, exit);
+    wrenches.push_back(contacts_[i].step(wheels[i], normal, sinkage, exit, dt_s));
   }
   for (std::size_t i = 0; i < wheels.size(); ++i) deform(i, wheels[i], wrenches[i], dt_s);
   return wrenches;
 }
 
+// The grid yields under the wheel as it stood at the start of the step: its press, then the
+// excavation by its blades over the lanes that touch the soil as pressed so far (the normal and
+// the lanes found again: the wheels before it have moved soil), then the repose around it.
 void SoftSoil::deform(std::size_t wheel, const WheelKinematics& kinematics,
                       const WheelWrench& wrench, double dt_s) {
   const WheelGeometry& geometry = contacts_[wheel].wheel();
   const Cylinder cylinder{kinematics.center_m, kinematics.axle, geometry.rim_radius_m,
                           geometry.width_m};
-  const Footprint footprint = grid_.press(cylinder);
+  grid_.press(cylinder, footprint_);
   if (wrench.diagnostics.in_contact && geometry.bladed) {
     const Vec3 normal = ground_normal(kinematics, wheel);
     const Vec3 rolling = cross(kinematics.axle, normal);
@@ -116,16 +151,15 @@ void SoftSoil::deform(std::size_t wheel, const WheelKinematics& kinematics,
     const double direction = contacts_[wheel].direction();
     const double slip_speed = direction * (geometry.shear_radius_m() * kinematics.spin_radps -
                                            dot(kinematics.velocity_mps, forward));
-    const std::vector<double> sinkage = lane_contacts(wheel, kinematics).sinkage_m;
-    const double in_contact = static_cast<double>(std::count_if(sinkage.begin(), sinkage.end(),
-                                                                [](double z) { return z > 0.0; })) /
-                              geometry.lanes;
+    const auto lanes = static_cast<std::size_t>(geometry.lanes);
+    const double touching =
+        find_lane_contacts(wheel, kinematics, normal, {lane_sinkage_.data(), lanes}, {});
     const double volume = soil_.excavation_fraction * geometry.width_m * geometry.blade_height_m *
-                          std::max(slip_speed, 0.0) * dt_s * in_contact;
-    grid_.excavate(footprint, cylinder, direction * forward,
+                          std::max(slip_speed, 0.0) * dt_s * touching / geometry.lanes;
+    grid_.excavate(footprint_, cylinder, direction * forward,
                    geometry.rim_radius_m + grid_.spec().cell_m, volume);
   }
-  grid_.relax(footprint, kRelaxMarginCells, kRelaxPasses);
+  grid_.relax(footprint_, kRelaxMarginCells, kRelaxPasses);
 }
 
 }  // namespace marsokhod::sim::soil

@@ -44,6 +44,9 @@ class SoftSoil {
   LaneContacts lane_contacts(std::size_t wheel, const WheelKinematics& kinematics) const;
   Vec3 ground_normal(const WheelKinematics& kinematics, std::size_t wheel) const;
 
+  // Raked level (SoilGrid::level), and every wheel's shear state cleared.
+  void level();
+
   const SoilGrid& grid() const { return grid_; }
   SoilGrid& grid() { return grid_; }
   const WheelSoilContact& contact(std::size_t wheel) const { return contacts_.at(wheel); }
@@ -52,12 +55,16 @@ class SoftSoil {
  private:
   double exit_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
                         double radius_m, double sinkage_m) const;
+  int find_lane_contacts(std::size_t wheel, const WheelKinematics& kinematics, const Vec3& normal,
+                         std::span<double> sinkage_m, std::span<double> exit_rad) const;
   void deform(std::size_t wheel, const WheelKinematics& kinematics, const WheelWrench& wrench,
               double dt_s);
 
   SoilParams soil_;
   SoilGrid grid_;
   std::vector<WheelSoilContact> contacts_;
+  std::vector<double> lane_sinkage_, lane_exit_;
+  Footprint footprint_;  // reused: its cell list keeps its capacity
 };
 
 }  // namespace marsokhod::sim::soil

@@ -1,6 +1,8 @@
 #include "sim/soil/soil_grid.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -12,9 +14,39 @@ namespace {
 constexpr double kMiss = std::numeric_limits<double>::infinity();
 // A rim this close above a cell still touches it (no soil is pushed underneath the wheel).
 constexpr double kTouchM = 1e-4;
-constexpr unsigned char kContact = 1, kRim = 2;
 
 void fail(const std::string& what) { throw std::invalid_argument("soil grid: " + what); }
+
+// The height of a cylinder's underside above (x, y), or +∞ where the vertical line misses it; the
+// cylinder's own numbers taken once for the many cells under it.
+class Underside {
+ public:
+  explicit Underside(const Cylinder& wheel)
+      : wheel_(wheel),
+        horizontal_(wheel.axle[0] * wheel.axle[0] + wheel.axle[1] * wheel.axle[1]),
+        radius2_(wheel.radius_m * wheel.radius_m) {}
+
+  // +∞ also where the underside certainly lies more than a nanometre above `level_m` (no square
+  // root for the cells the rim cannot reach).
+  double height_above_m(double x_m, double y_m, double level_m) const {
+    const double ax = wheel_.axle[0], ay = wheel_.axle[1];
+    if (horizontal_ < 1e-12) return kMiss;
+    const double dx = x_m - wheel_.center_m[0], dy = y_m - wheel_.center_m[1];
+    const double along = (dx * ax + dy * ay) / horizontal_;
+    if (std::abs(along) > 0.5 * wheel_.width_m) return kMiss;
+    const double ex = dx - along * ax, ey = dy - along * ay;
+    const double across2 = ex * ex + ey * ey;
+    if (across2 >= radius2_) return kMiss;
+    const double axis = wheel_.center_m[2] + along * wheel_.axle[2];
+    const double clearance = axis - level_m - 1e-9;
+    if (clearance > 0.0 && clearance * clearance > radius2_ - across2) return kMiss;
+    return axis - std::sqrt(radius2_ - across2);
+  }
+
+ private:
+  const Cylinder& wheel_;
+  double horizontal_, radius2_;
+};
 
 }  // namespace
 
@@ -44,7 +76,6 @@ SoilGrid::SoilGrid(GridSpec spec, SoilParams soil,
   surface_.resize(count);
   sinkage_.assign(count, 0.0);
   compaction_.assign(count, 0.0);
-  mark_.assign(count, 0);
   for (int iy = 0; iy < spec_.cells_y; ++iy) {
     for (int ix = 0; ix < spec_.cells_x; ++ix) {
       const double level = initial_surface_m(cell_x_m(ix), cell_y_m(iy));
@@ -59,33 +90,7 @@ SoilGrid::SoilGrid(GridSpec spec, SoilParams soil,
   }
   initial_ = surface_;
   repose_step_m_ = spec_.cell_m * std::tan(soil_.repose_angle_rad) + 1e-12;
-}
-
-double SoilGrid::bilinear(const std::vector<double>& field, const std::vector<double>* added,
-                          double x_m, double y_m) const {
-  const auto axis = [](double coordinate, int cells, int& low, int& high) {
-    const double clamped = std::clamp(coordinate, 0.0, cells - 1.0);
-    low = std::min(static_cast<int>(clamped), cells - 2);
-    high = low + 1;
-    return clamped - low;
-  };
-  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
-  const double wx = axis((x_m - spec_.origin_x_m) / spec_.cell_m - 0.5, spec_.cells_x, x0, x1);
-  const double wy = axis((y_m - spec_.origin_y_m) / spec_.cell_m - 0.5, spec_.cells_y, y0, y1);
-  const auto at = [&](int ix, int iy) {
-    const std::size_t i = index(ix, iy);
-    return field[i] + (added != nullptr ? (*added)[i] : 0.0);
-  };
-  return (1.0 - wy) * ((1.0 - wx) * at(x0, y0) + wx * at(x1, y0)) +
-         wy * ((1.0 - wx) * at(x0, y1) + wx * at(x1, y1));
-}
-
-double SoilGrid::surface_m(double x_m, double y_m) const {
-  return bilinear(surface_, nullptr, x_m, y_m);
-}
-
-double SoilGrid::undisturbed_m(double x_m, double y_m) const {
-  return bilinear(surface_, &sinkage_, x_m, y_m);
+  inverse_unloading_ = (1.0 + 1e-12) / soil_.unloading_stiffness_ratio;  // a bound, not a value
 }
 
 double SoilGrid::plastic_sinkage_m(double x_m, double y_m) const {
@@ -112,21 +117,6 @@ void SoilGrid::set_cell_surface_m(int ix, int iy, double level_m) {
   initial_[index(ix, iy)] = level_m;
 }
 
-// The height of the cylinder's underside above (x, y), or +∞ where the vertical line misses it.
-double SoilGrid::rim_below_m(const Cylinder& wheel, double x_m, double y_m) const {
-  const double ax = wheel.axle[0], ay = wheel.axle[1];
-  const double horizontal = ax * ax + ay * ay;
-  if (horizontal < 1e-12) return kMiss;
-  const double dx = x_m - wheel.center_m[0], dy = y_m - wheel.center_m[1];
-  const double along = (dx * ax + dy * ay) / horizontal;
-  if (std::abs(along) > 0.5 * wheel.width_m) return kMiss;
-  const double ex = dx - along * ax, ey = dy - along * ay;
-  const double across2 = ex * ex + ey * ey;
-  if (across2 >= wheel.radius_m * wheel.radius_m) return kMiss;
-  return wheel.center_m[2] + along * wheel.axle[2] -
-         std::sqrt(wheel.radius_m * wheel.radius_m - across2);
-}
-
 void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
   const double depth =
       volume_m3 / (static_cast<double>(cells.size()) * spec_.cell_m * spec_.cell_m);
@@ -134,33 +124,86 @@ void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
   volumes_.fill_m3 += volume_m3;
 }
 
+void SoilGrid::level() {
+  surface_ = initial_;
+  std::fill(sinkage_.begin(), sinkage_.end(), 0.0);
+  std::fill(compaction_.begin(), compaction_.end(), 0.0);
+  volumes_ = SoilVolumes{};
+}
+
 Footprint SoilGrid::press(const Cylinder& wheel) {
   Footprint footprint;
-  // The cylinder's shadow: half its width along the axle, its radius across.
-  const auto reach = [&](double axle_component) {
-    return std::abs(axle_component) * 0.5 * wheel.width_m +
-           wheel.radius_m * std::sqrt(std::max(1.0 - axle_component * axle_component, 0.0));
-  };
+  press(wheel, footprint);
+  return footprint;
+}
+
+void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
+  footprint.contact_cells.clear();
   const auto cell_of = [&](double coordinate, double origin, int cells) {
     return std::clamp(static_cast<int>(std::floor((coordinate - origin) / spec_.cell_m)), 0,
                       cells - 1);
   };
-  const double reach_x = reach(wheel.axle[0]), reach_y = reach(wheel.axle[1]);
-  footprint.min_x = cell_of(wheel.center_m[0] - reach_x, spec_.origin_x_m, spec_.cells_x);
-  footprint.max_x = cell_of(wheel.center_m[0] + reach_x, spec_.origin_x_m, spec_.cells_x);
-  footprint.min_y = cell_of(wheel.center_m[1] - reach_y, spec_.origin_y_m, spec_.cells_y);
-  footprint.max_y = cell_of(wheel.center_m[1] + reach_y, spec_.origin_y_m, spec_.cells_y);
+  // The shadow of the part of the cylinder within `radius` of its axle: half its width along the
+  // axle, the radius across.
+  int min_x = 0, max_x = 0, min_y = 0, max_y = 0;
+  const auto shadow = [&](double radius) {
+    const auto reach = [&](double axle_component) {
+      return std::abs(axle_component) * 0.5 * wheel.width_m +
+             radius * std::sqrt(std::max(1.0 - axle_component * axle_component, 0.0));
+    };
+    const double reach_x = reach(wheel.axle[0]), reach_y = reach(wheel.axle[1]);
+    min_x = cell_of(wheel.center_m[0] - reach_x, spec_.origin_x_m, spec_.cells_x);
+    max_x = cell_of(wheel.center_m[0] + reach_x, spec_.origin_x_m, spec_.cells_x);
+    min_y = cell_of(wheel.center_m[1] - reach_y, spec_.origin_y_m, spec_.cells_y);
+    max_y = cell_of(wheel.center_m[1] + reach_y, spec_.origin_y_m, spec_.cells_y);
+  };
+  shadow(wheel.radius_m);
+  // Only the rim below the highest level a cell of the shadow still touches at can touch a cell:
+  // where the rim is g above that level the contact lies within √(r² − g²) of the axle (with a
+  // nanometre to spare for rounding; every cell inside is then tested exactly).
+  double top = -std::numeric_limits<double>::infinity();
+  for (int iy = min_y; iy <= max_y; ++iy) {
+    for (int ix = min_x; ix <= max_x; ++ix) {
+      const std::size_t i = index(ix, iy);
+      top = std::max(top, surface_[i] + std::max(kTouchM, sinkage_[i] * inverse_unloading_));
+    }
+  }
+  const double gap = wheel.center_m[2] - std::abs(wheel.axle[2]) * 0.5 * wheel.width_m - top -
+                     1e-9;
+  if (gap > 0.0) {
+    shadow(std::sqrt(std::max(wheel.radius_m * wheel.radius_m - gap * gap, 0.0)) + 1e-9);
+  }
+  const int box_x = min_x - 1, box_y = min_y - 1;  // the contact bit map's corner
+  const int width = max_x - min_x + 3, height = max_y - min_y + 3;
+  const int words = (width + 63) / 64;
+  contact_bits_.assign(static_cast<std::size_t>(words * height), 0);
+  int contact_min_x = max_x + 1, contact_max_x = min_x - 1;
+  int contact_min_y = max_y + 1, contact_max_y = min_y - 1;
   const double area = spec_.cell_m * spec_.cell_m;
   double displaced_m3 = 0.0;
-  for (int iy = footprint.min_y; iy <= footprint.max_y; ++iy) {
-    for (int ix = footprint.min_x; ix <= footprint.max_x; ++ix) {
+  const Underside underside(wheel);
+  // Raster order: the contact cells come out ascending.
+  for (int iy = min_y; iy <= max_y; ++iy) {
+    for (int ix = min_x; ix <= max_x; ++ix) {
       const std::size_t i = index(ix, iy);
-      const double rim = rim_below_m(wheel, cell_x_m(ix), cell_y_m(iy));
-      // Within the elastic rebound of its plastic sinkage the cell still carries the rim.
-      const double rebound = sinkage_[i] / soil_.unloading_stiffness_ratio;
-      if (rim > surface_[i] + std::max(kTouchM, rebound)) continue;
+      // A rim above the highest level at which this cell still carries it is a miss as before.
+      const double rim = underside.height_above_m(
+          cell_x_m(ix), cell_y_m(iy),
+          surface_[i] + std::max(kTouchM, sinkage_[i] * inverse_unloading_));
+      // Within the elastic rebound of its plastic sinkage the cell still carries the rim
+      // (surface + max(a, b) > rim exactly when both sums are: the rebound only when needed).
+      if (rim > surface_[i] + kTouchM &&
+          rim > surface_[i] + sinkage_[i] / soil_.unloading_stiffness_ratio) {
+        continue;
+      }
       footprint.contact_cells.push_back(static_cast<int>(i));
-      mark_[i] = kContact;
+      const int column = ix - box_x;
+      contact_bits_[static_cast<std::size_t>((iy - box_y) * words + column / 64)] |=
+          std::uint64_t{1} << (column % 64);
+      contact_min_x = std::min(contact_min_x, ix);
+      contact_max_x = std::max(contact_max_x, ix);
+      contact_min_y = std::min(contact_min_y, iy);
+      contact_max_y = std::max(contact_max_y, iy);
       if (rim >= surface_[i]) continue;
       const double cut = surface_[i] - rim;
       surface_[i] = rim;
@@ -171,49 +214,59 @@ Footprint SoilGrid::press(const Cylinder& wheel) {
       displaced_m3 += soil_.displaced_fraction * cut * area;
     }
   }
-  std::sort(footprint.contact_cells.begin(), footprint.contact_cells.end());
-  shrink_to_contact(footprint);
-  // The patch's rim: the 8-neighbours of contact cells that the wheel does not touch.
-  std::vector<int> rim_cells;
-  for (int cell : footprint.contact_cells) {
-    const int cx = cell % spec_.cells_x, cy = cell / spec_.cells_x;
-    for (int iy = std::max(cy - 1, 0); iy <= std::min(cy + 1, spec_.cells_y - 1); ++iy) {
-      for (int ix = std::max(cx - 1, 0); ix <= std::min(cx + 1, spec_.cells_x - 1); ++ix) {
-        const std::size_t i = index(ix, iy);
-        if (mark_[i] != 0) continue;
-        mark_[i] = kRim;
-        rim_cells.push_back(static_cast<int>(i));
-      }
-    }
-  }
-  std::sort(rim_cells.begin(), rim_cells.end());
-  for (int cell : footprint.contact_cells) mark_[static_cast<std::size_t>(cell)] = 0;
-  for (int cell : rim_cells) mark_[static_cast<std::size_t>(cell)] = 0;
-  if (displaced_m3 > 0.0) {
-    if (rim_cells.empty()) {  // nowhere to go (the grid's edge): compacted after all
-      volumes_.compacted_m3 += displaced_m3;
-    } else {
-      spread(rim_cells, displaced_m3);
-    }
-  }
-  return footprint;
-}
-
-// The box of the contact cells (empty when none), where relax() then works.
-void SoilGrid::shrink_to_contact(Footprint& footprint) const {
+  footprint.min_x = contact_min_x;
+  footprint.max_x = contact_max_x;
+  footprint.min_y = contact_min_y;
+  footprint.max_y = contact_max_y;
   if (footprint.contact_cells.empty()) {
     footprint.max_x = footprint.min_x - 1;
     footprint.max_y = footprint.min_y - 1;
-    return;
   }
-  footprint.min_x = footprint.min_y = std::numeric_limits<int>::max();
-  footprint.max_x = footprint.max_y = std::numeric_limits<int>::min();
-  for (int cell : footprint.contact_cells) {
-    const int cx = cell % spec_.cells_x, cy = cell / spec_.cells_x;
-    footprint.min_x = std::min(footprint.min_x, cx);
-    footprint.max_x = std::max(footprint.max_x, cx);
-    footprint.min_y = std::min(footprint.min_y, cy);
-    footprint.max_y = std::max(footprint.max_y, cy);
+  collect_rim(footprint, box_x, box_y, width, words);
+  if (displaced_m3 > 0.0) {
+    if (rim_cells_.empty()) {  // nowhere to go (the grid's edge): compacted after all
+      volumes_.compacted_m3 += displaced_m3;
+    } else {
+      spread(rim_cells_, displaced_m3);
+    }
+  }
+}
+
+// The patch's rim: the 8-neighbours of contact cells that the wheel does not touch, within the
+// grid, in raster order (ascending). The contact bit map, dilated by one cell each way, less the
+// contact itself.
+void SoilGrid::collect_rim(const Footprint& footprint, int box_x, int box_y, int width,
+                           int words) {
+  rim_cells_.clear();
+  if (footprint.contact_cells.empty()) return;
+  const auto bits = [&](int row, int word) -> std::uint64_t {
+    if (row < 0 || word < 0 || word >= words ||
+        static_cast<std::size_t>(row * words) >= contact_bits_.size()) {
+      return 0;
+    }
+    return contact_bits_[static_cast<std::size_t>(row * words + word)];
+  };
+  const int rows = static_cast<int>(contact_bits_.size()) / words;
+  for (int row = std::max(footprint.min_y - 1 - box_y, 0);
+       row <= std::min(footprint.max_y + 1 - box_y, rows - 1); ++row) {
+    const int iy = box_y + row;
+    if (iy < 0 || iy >= spec_.cells_y) continue;
+    for (int word = 0; word < words; ++word) {
+      const auto column = [&](int w) { return bits(row - 1, w) | bits(row, w) | bits(row + 1, w); };
+      const std::uint64_t middle = column(word);
+      std::uint64_t dilated = middle | (middle << 1) | (middle >> 1) | (column(word - 1) >> 63) |
+                              (column(word + 1) << 63);
+      dilated &= ~bits(row, word);
+      const int used = std::min(64, width - 64 * word);
+      if (used < 64) dilated &= (std::uint64_t{1} << used) - 1;
+      while (dilated != 0) {
+        const int bit = std::countr_zero(dilated);
+        dilated &= dilated - 1;
+        const int ix = box_x + 64 * word + bit;
+        if (ix < 0 || ix >= spec_.cells_x) continue;
+        rim_cells_.push_back(static_cast<int>(index(ix, iy)));
+      }
+    }
   }
 }
 
@@ -247,9 +300,8 @@ void SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, const
   spread(targets, volume_m3);
 }
 
-bool SoilGrid::relax_pair(std::size_t first, std::size_t second, double limit_m) {
-  const double difference = surface_[first] - surface_[second];
-  if (std::abs(difference) <= limit_m) return false;
+void SoilGrid::move_downhill(std::size_t first, std::size_t second, double difference,
+                             double limit_m) {
   const double moved = 0.5 * (std::abs(difference) - limit_m);
   const std::size_t higher = difference > 0.0 ? first : second;
   const std::size_t lower = difference > 0.0 ? second : first;
@@ -259,7 +311,6 @@ bool SoilGrid::relax_pair(std::size_t first, std::size_t second, double limit_m)
   volumes_.cut_m3 += volume;
   volumes_.fill_m3 += volume;
   volumes_.relaxed_m3 += volume;
-  return true;
 }
 
 void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {
@@ -269,12 +320,29 @@ void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {
   const int y0 = std::max(footprint.min_y - margin_cells, 0);
   const int y1 = std::min(footprint.max_y + margin_cells, spec_.cells_y - 1);
   const double limit = repose_step_m_;
+  const auto width = static_cast<std::size_t>(spec_.cells_x);
   for (int pass = 0; pass < passes; ++pass) {
     bool moved = false;
+    // In raster order, each cell with its right then its lower neighbour. A row none of whose
+    // pairs is steeper than the limit (checked as it comes up, after the rows above moved soil)
+    // would move nothing and is passed over.
     for (int iy = y0; iy <= y1; ++iy) {
+      const std::size_t row = index(0, iy);
+      const double* level = surface_.data() + row;
+      double steepest = 0.0;
+      for (int ix = x0; ix < x1; ++ix) {
+        steepest = std::max(steepest, std::abs(level[ix] - level[ix + 1]));
+      }
+      if (iy < y1) {
+        for (int ix = x0; ix <= x1; ++ix) {
+          steepest = std::max(steepest, std::abs(level[ix] - level[ix + spec_.cells_x]));
+        }
+      }
+      if (steepest <= limit) continue;
       for (int ix = x0; ix <= x1; ++ix) {
-        if (ix < x1) moved |= relax_pair(index(ix, iy), index(ix + 1, iy), limit);
-        if (iy < y1) moved |= relax_pair(index(ix, iy), index(ix, iy + 1), limit);
+        const std::size_t i = row + static_cast<std::size_t>(ix);
+        if (ix < x1) moved |= relax_pair(i, i + 1, limit);
+        if (iy < y1) moved |= relax_pair(i, i + width, limit);
       }
     }
     if (!moved) return;

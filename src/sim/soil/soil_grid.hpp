@@ -20,6 +20,9 @@
 //   Σ(surface − initial surface)·cell² = fill − cut,   cut − fill = compacted_m3.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -69,9 +72,12 @@ class SoilGrid {
            const std::function<double(double, double)>& initial_surface_m);
 
   const GridSpec& spec() const { return spec_; }
-  // Bilinear between cell centres; beyond the grid the nearest edge cell's value.
-  double surface_m(double x_m, double y_m) const;
-  double undisturbed_m(double x_m, double y_m) const;
+  // Bilinear between cell centres; beyond the grid the nearest edge cell's value. (Inline: the
+  // contacts sample the surface many times a step.)
+  double surface_m(double x_m, double y_m) const { return bilinear(surface_, nullptr, x_m, y_m); }
+  double undisturbed_m(double x_m, double y_m) const {
+    return bilinear(surface_, &sinkage_, x_m, y_m);
+  }
   double plastic_sinkage_m(double x_m, double y_m) const;
   // How far above the soil a rim may be and still touch it: the elastic rebound of the plastic
   // sinkage, sinkage_m / unloading_stiffness_ratio, or 0.1 mm.
@@ -84,10 +90,14 @@ class SoilGrid {
   double cell_compaction_m(int ix, int iy) const { return compaction_[index(ix, iy)]; }
   double cell_initial_m(int ix, int iy) const { return initial_[index(ix, iy)]; }
   void set_cell_surface_m(int ix, int iy, double level_m);  // for tests and scenario set-up
+  // Raked level: every cell back at its initial surface, no sinkage or compaction, the books at 0.
+  void level();
   const SoilVolumes& volumes() const { return volumes_; }
 
-  // Cuts the cells under the cylinder down to its rim; returns the contact patch.
+  // Cuts the cells under the cylinder down to its rim; returns the contact patch (the second form
+  // fills `footprint`, keeping its list's capacity from step to step).
   Footprint press(const Cylinder& wheel);
+  void press(const Cylinder& wheel, Footprint& footprint);
   // Takes volume_m3 evenly from the footprint's contact cells and drops it on the cells
   // behind_m behind the centre (along −toward, horizontal), across the wheel's width.
   void excavate(const Footprint& footprint, const Cylinder& wheel, const Vec3& toward,
@@ -104,18 +114,47 @@ class SoilGrid {
   double cell_y_m(int iy) const { return spec_.origin_y_m + (iy + 0.5) * spec_.cell_m; }
   double bilinear(const std::vector<double>& field, const std::vector<double>* added, double x_m,
                   double y_m) const;
-  double rim_below_m(const Cylinder& wheel, double x_m, double y_m) const;
   void spread(const std::vector<int>& cells, double volume_m3);
-  void shrink_to_contact(Footprint& footprint) const;
-  bool relax_pair(std::size_t higher_or_lower, std::size_t other, double limit_m);
+  void collect_rim(const Footprint& footprint, int box_x, int box_y, int width, int words);
+  bool relax_pair(std::size_t first, std::size_t second, double limit_m) {
+    const double difference = surface_[first] - surface_[second];
+    if (std::abs(difference) <= limit_m) return false;
+    move_downhill(first, second, difference, limit_m);
+    return true;
+  }
+  void move_downhill(std::size_t first, std::size_t second, double difference, double limit_m);
 
   GridSpec spec_;
   SoilParams soil_;
   std::vector<double> surface_, sinkage_, compaction_, initial_;
-  std::vector<unsigned char> mark_;  // scratch: 1 contact, 2 rim
+  // Scratch of press(): the contact cells as bits over their search box (one cell of border),
+  // row-major in 64-bit words; the rim cells.
+  std::vector<std::uint64_t> contact_bits_;
+  std::vector<int> rim_cells_;
+  double inverse_unloading_ = 0.1;  // a little above 1 / unloading_stiffness_ratio
   double repose_step_m_ = 0.0;       // the steepest difference of neighbours, cell·tan(repose)
   // (A tiny tolerance in it stops endless passes over differences rounding keeps at the limit.)
   SoilVolumes volumes_;
 };
+
+inline double SoilGrid::bilinear(const std::vector<double>& field,
+                                 const std::vector<double>* added, double x_m,
+                                 double y_m) const {
+  const auto axis = [](double coordinate, int cells, int& low, int& high) {
+    const double clamped = std::clamp(coordinate, 0.0, cells - 1.0);
+    low = std::min(static_cast<int>(clamped), cells - 2);
+    high = low + 1;
+    return clamped - low;
+  };
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  const double wx = axis((x_m - spec_.origin_x_m) / spec_.cell_m - 0.5, spec_.cells_x, x0, x1);
+  const double wy = axis((y_m - spec_.origin_y_m) / spec_.cell_m - 0.5, spec_.cells_y, y0, y1);
+  const auto at = [&](int ix, int iy) {
+    const std::size_t i = index(ix, iy);
+    return field[i] + (added != nullptr ? (*added)[i] : 0.0);
+  };
+  return (1.0 - wy) * ((1.0 - wx) * at(x0, y0) + wx * at(x1, y0)) +
+         wy * ((1.0 - wx) * at(x0, y1) + wx * at(x1, y1));
+}
 
 }  // namespace marsokhod::sim::soil

@@ -1,10 +1,13 @@
 #include "sim/soil/wheel_soil.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <cstddef>
 #include <sstream>
 #include <stdexcept>
+
+#include "sim/soil/angle_steps.hpp"
 
 namespace marsokhod::sim::soil {
 namespace {
@@ -33,10 +36,19 @@ WheelSoilContact::WheelSoilContact(SoilParams soil, WheelGeometry wheel)
   validate(soil_);
   validate(wheel_);
   strength_ = shear_strength(soil_);
+  blades_ = blade_axes(wheel_);
+  modulus_pa_ = soil_.cohesive_modulus / wheel_.width_m + soil_.frictional_modulus;
+  passive_ = passive_earth_coefficient(soil_);
   const auto size = static_cast<std::size_t>(wheel_.lanes * wheel_.arc_samples);
   shear_t_.assign(size, 0.0);
   shear_y_.assign(size, 0.0);
-  scratch_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  scratch_.assign(2 * static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  cosines_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  sample_sin_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  sample_cos_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  sample_sigma_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  share_across_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  share_along_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
 }
 
 double WheelSoilContact::lane_offset_m(int lane) const {
@@ -66,56 +78,128 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
   const double shift = std::max(spin_radps, 0.0) * dt_s / span * samples;  // in samples
   const double rs = wheel_.shear_radius_m();
   const double spacing = 1.0 / samples;
-  for (std::vector<double>* field : {&shear_t_, &shear_y_}) {
-    double* j = field->data() + lane * samples;
-    std::copy(j, j + samples, scratch_.begin());
-    for (int k = 0; k < samples; ++k) {
-      const double from = k - shift;  // sample coordinate; the entry (j = 0) is at −0.5
-      double value = 0.0;
-      if (from > 0.0) {
-        const int below = static_cast<int>(from);
-        const double weight = from - below;
-        value = (1.0 - weight) * scratch_[static_cast<std::size_t>(below)] +
-                weight * scratch_[static_cast<std::size_t>(std::min(below + 1, samples - 1))];
-      } else if (from > -0.5) {
-        value = scratch_[0] * (from + 0.5) / 0.5;
-      }
-      // The slip rate at the middle of the path since the last step, at least half a sample
-      // upstream: the linear interpolation's steady state then sums it by the midpoint rule.
-      const double position = (k + 0.5) * spacing;
-      const double middle =
-          std::max(position - std::max(shift, 1.0) * spacing / 2.0, position / 2.0);
-      const double theta = arc.entry_rad - middle * span;
-      const double rate =
-          field == &shear_t_ ? rs * spin_radps - travel_mps * std::cos(theta) : -lateral_mps;
-      j[k] = value + rate * dt_s;
+  // The slip rate at the middle of the path since the last step, at least half a sample
+  // upstream: the linear interpolation's steady state then sums it by the midpoint rule. That
+  // middle lies (k + ½)/2 samples from the entry for the first ⌈reach − ½⌉ samples, k + ½ − reach/2
+  // beyond (reach = max(shift, 1)): θ is linear in k on either side, so its cosines come by
+  // rotation (angle_steps.hpp).
+  const double reach = std::max(shift, 1.0);
+  const int near = std::clamp(static_cast<int>(std::ceil(reach - 0.5)), 0, samples);
+  if (near == 1) {  // the usual case, one sample: its cosine alone
+    cosines_[0] = std::cos(arc.entry_rad - 0.25 * spacing * span);
+  } else if (near > 1) {
+    AngleSteps angle(arc.entry_rad - 0.25 * spacing * span, -0.5 * spacing * span);
+    for (int k = 0; k < near; ++k, angle.advance()) {
+      cosines_[static_cast<std::size_t>(k)] = angle.cos();
     }
+  }
+  if (near < samples) {
+    AngleSteps angle(arc.entry_rad - (near + 0.5 - 0.5 * reach) * spacing * span, -spacing * span);
+    for (int k = near; k < samples; ++k, angle.advance()) {
+      cosines_[static_cast<std::size_t>(k)] = angle.cos();
+    }
+  }
+  // Both components move with the rim: the same interpolation for each.
+  double* jt = shear_t_.data() + lane * samples;
+  double* jy = shear_y_.data() + lane * samples;
+  std::copy(jt, jt + samples, scratch_.begin());
+  std::copy(jy, jy + samples, scratch_.begin() + samples);
+  const double* old_t = scratch_.data();
+  const double* old_y = scratch_.data() + samples;
+  const double lateral_step = -lateral_mps * dt_s;
+  for (int k = 0; k < samples; ++k) {
+    const double from = k - shift;  // sample coordinate; the entry (j = 0) is at −0.5
+    double value_t = 0.0, value_y = 0.0;
+    if (from > 0.0) {
+      const int below = static_cast<int>(from);
+      const int above = std::min(below + 1, samples - 1);
+      const double weight = from - below;
+      value_t = (1.0 - weight) * old_t[below] + weight * old_t[above];
+      value_y = (1.0 - weight) * old_y[below] + weight * old_y[above];
+    } else if (from > -0.5) {
+      value_t = old_t[0] * (from + 0.5) / 0.5;
+      value_y = old_y[0] * (from + 0.5) / 0.5;
+    }
+    const double cosine = cosines_[static_cast<std::size_t>(k)];
+    jt[k] = value_t + (rs * spin_radps - travel_mps * cosine) * dt_s;
+    jy[k] = value_y + lateral_step;
   }
 }
 
+// Per sample of width Δb = b/lanes and angle Δθ, with outward = sin θ·x − cos θ·z and
+// tangent = cos θ·x + sin θ·z in the motion frame (x, y, z):
+//   normal force −σ r ΔθΔb·outward, shear (τ_t tangent + τ_y y) r_s ΔθΔb,
+// summed as scalars in (x, y, z). About the lane's centre the normal force has no moment, and
+// outward × tangent = −d·y, outward × y = d·(cos θ·x + sin θ·z), d = ±1 the motion frame's
+// direction (x × y = d·z): the moments are summed as scalars too, the frame applied once.
 void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const Frame& frame,
-                                         WheelWrench& wrench) const {
+                                         WheelWrench& wrench) {
   const int samples = wheel_.arc_samples;
-  const double r = wheel_.rim_radius_m, rs = wheel_.shear_radius_m(), b = wheel_.width_m;
+  const double r = wheel_.rim_radius_m, rs = wheel_.shear_radius_m();
   const double step = (arc.entry_rad - arc.exit_rad) / samples;
-  const double area = step * b / wheel_.lanes;
-  const Vec3 lane_center = lane_offset_m(lane) * frame.axle;
+  const double area = step * wheel_.width_m / wheel_.lanes;
+  const bool compressed = arc.max_stress_rad > arc.exit_rad;  // a rear part mapped onto the front
+  const double rear_rate =
+      compressed ? step * (arc.entry_rad - arc.max_stress_rad) / (arc.max_stress_rad - arc.exit_rad)
+                 : 0.0;
   const std::size_t base = static_cast<std::size_t>(lane * samples);
-  for (int k = 0; k < samples; ++k) {
-    const double theta = arc.entry_rad - (k + 0.5) * step;
-    const double s = std::sin(theta), c = std::cos(theta);
-    const Vec3 outward = s * frame.forward - c * frame.up;  // from the centre to the rim
-    const Vec3 tangent = c * frame.forward + s * frame.up;
-    const double sigma = normal_stress_pa(soil_, arc, r, b, theta);
-    const SurfaceShear tau = rim_shear(strength_, wheel_, frame.handedness, sigma,
-                                       shear_t_[base + k], shear_y_[base + k]);
-    const Vec3 normal_force = (-sigma * r * area) * outward;
-    const Vec3 shear_force =
-        (tau.tangential_pa * rs * area) * tangent + (tau.lateral_pa * rs * area) * frame.axle;
-    wrench.force_n += normal_force + shear_force;
-    wrench.torque_nm += cross(lane_center + r * outward, normal_force);
-    wrench.torque_nm += cross(lane_center + rs * outward, shear_force);
+  // First the angles and the normal stresses (independent from sample to sample, so their
+  // exponentials overlap), then the shear and the sums.
+  double* sines = sample_sin_.data();
+  double* cosines = sample_cos_.data();
+  double* sigmas = sample_sigma_.data();
+  {
+    AngleSteps angle(arc.entry_rad - 0.5 * step, -step);
+    std::optional<AngleSteps> rear;  // θ* behind θm
+    for (int k = 0; k < samples; ++k, angle.advance()) {
+      const double theta = arc.entry_rad - (k + 0.5) * step;
+      sines[k] = angle.sin();
+      cosines[k] = angle.cos();
+      double cos_equivalent = angle.cos();
+      if (compressed && theta < arc.max_stress_rad) {
+        if (!rear) rear.emplace(equivalent_angle_rad(arc, theta), rear_rate);
+        cos_equivalent = rear->cos();
+        rear->advance();
+      }
+      sigmas[k] = cos_equivalent;
+    }
+    for (int k = 0; k < samples; ++k) {
+      sigmas[k] = normal_stress_from_cos_pa(modulus_pa_, arc, r, sigmas[k]);
+    }
   }
+  // Then the blades' mobilised shares (the exponentials again in a loop of their own).
+  const BladeFrame blade = blade_frame(blades_, frame.handedness);
+  double* across = share_across_.data();
+  double* along = share_along_.data();
+  if (blades_.bladed) {
+    const double inverse_K = strength_.inverse_shear_modulus_per_m;
+    for (int k = 0; k < samples; ++k) {
+      const double jt = shear_t_[base + k], jy = shear_y_[base + k];
+      across[k] = detail::mobilised(blade.across_displacement_m(jt, jy), inverse_K);
+      along[k] = detail::mobilised(blade.along_displacement_m(jt, jy), inverse_K);
+    }
+  }
+  double fx = 0.0, fy = 0.0, fz = 0.0, mx = 0.0, my = 0.0, mz = 0.0;
+  for (int k = 0; k < samples; ++k) {
+    const double s = sines[k], c = cosines[k], sigma = sigmas[k];
+    const SurfaceShear tau =
+        blades_.bladed ? bladed_shear(strength_, blade, sigma, across[k], along[k])
+                       : rim_shear(strength_, blades_, frame.handedness, sigma,
+                                   shear_t_[base + k], shear_y_[base + k]);
+    const double normal = sigma * r * area, tangential = tau.tangential_pa * rs * area;
+    const double lateral = tau.lateral_pa * rs * area;
+    fx += tangential * c - normal * s;
+    fz += normal * c + tangential * s;
+    fy += lateral;
+    my -= tangential * rs;
+    mx += lateral * rs * c;
+    mz += lateral * rs * s;
+  }
+  const double d = direction_;
+  const Vec3 force = fx * frame.forward + fy * frame.axle + fz * frame.up;
+  wrench.force_n += force;
+  wrench.torque_nm += cross(lane_offset_m(lane) * frame.axle, force);
+  wrench.torque_nm += (d * mx) * frame.forward + (d * my) * frame.axle + (d * mz) * frame.up;
 }
 
 void WheelSoilContact::add_damping(double contact_area_m2, const Frame& frame,
@@ -144,7 +228,7 @@ void WheelSoilContact::add_sidewall(std::span<const double> lane_sinkage_m, cons
   // side.
   const int leading = mean > 0.0 ? 0 : wheel_.lanes - 1;
   const double sinkage = lane_sinkage_m[static_cast<std::size_t>(leading)];
-  const double force = sidewall_resistance_n(soil_, wheel_.rim_radius_m, sinkage) *
+  const double force = sidewall_resistance_n(soil_, passive_, wheel_.rim_radius_m, sinkage) *
                        mobilised(mean, soil_.shear_modulus_m);
   const double side = mean > 0.0 ? -0.5 : 0.5;
   const Vec3 at = (side * wheel_.width_m) * frame.axle -

@@ -95,7 +95,7 @@ class WheelSoilContact {
   void advect_lane(int lane, const ContactArc& arc, double spin_radps, double travel_mps,
                    double lateral_mps, double dt_s);
   void add_lane_stresses(int lane, const ContactArc& arc, const Frame& frame,
-                         WheelWrench& wrench) const;
+                         WheelWrench& wrench);
   void add_damping(double contact_area_m2, const Frame& frame, const Vec3& velocity_mps,
                    WheelWrench& wrench) const;
   void add_sidewall(std::span<const double> lane_sinkage_m, const Frame& frame,
@@ -104,8 +104,14 @@ class WheelSoilContact {
   SoilParams soil_;
   WheelGeometry wheel_;
   ShearStrength strength_;
+  BladeAxes blades_;
+  double modulus_pa_ = 0.0;  // k_c/b + k_φ
+  double passive_ = 1.0;     // N_φ of the sidewall
   int direction_ = 1;
-  std::vector<double> shear_t_, shear_y_, scratch_;
+  std::vector<double> shear_t_, shear_y_, scratch_, cosines_;
+  // Per arc sample of the lane being summed: sin θ, cos θ, σ, the blades' mobilised shares
+  // across and along (scratch of add_lane_stresses).
+  std::vector<double> sample_sin_, sample_cos_, sample_sigma_, share_across_, share_along_;
 };
 
 }  // namespace marsokhod::sim::soil

@@ -9,11 +9,7 @@
 namespace marsokhod::sim::soil {
 namespace {
 
-// Janosi–Hanamoto's mobilised share 1 − e^(−|j|/K), signed as j.
-double mobilised(double displacement_m, double shear_modulus_m) {
-  const double share = 1.0 - std::exp(-std::abs(displacement_m) / shear_modulus_m);
-  return displacement_m < 0.0 ? -share : share;
-}
+using detail::mobilised;
 
 }  // namespace
 
@@ -37,57 +33,48 @@ ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinka
   return arc;
 }
 
+double equivalent_angle_rad(const ContactArc& arc, double theta_rad) {
+  if (theta_rad < arc.max_stress_rad && arc.max_stress_rad > arc.exit_rad) {
+    return arc.entry_rad - (theta_rad - arc.exit_rad) * (arc.entry_rad - arc.max_stress_rad) /
+                               (arc.max_stress_rad - arc.exit_rad);
+  }
+  return theta_rad;
+}
+
 double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,
                         double width_m, double theta_rad) {
   if (theta_rad > arc.entry_rad || theta_rad < arc.exit_rad || arc.entry_rad <= 0.0) return 0.0;
-  double equivalent = theta_rad;  // θ*: behind θm the front's stresses, compressed onto [θ2, θm]
-  if (theta_rad < arc.max_stress_rad && arc.max_stress_rad > arc.exit_rad) {
-    equivalent = arc.entry_rad - (theta_rad - arc.exit_rad) * (arc.entry_rad - arc.max_stress_rad) /
-                                     (arc.max_stress_rad - arc.exit_rad);
-  }
-  const double n = arc.sinkage_exponent;
   const double modulus = soil.cohesive_modulus / width_m + soil.frictional_modulus;
-  const double depth = std::max(std::cos(equivalent) - arc.cos_entry, 0.0);
-  return modulus * std::pow(rim_radius_m * depth, n);
+  return normal_stress_from_cos_pa(modulus, arc, rim_radius_m,
+                                   std::cos(equivalent_angle_rad(arc, theta_rad)));
 }
 
 double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m) {
   const double strength = soil.cohesion_pa + normal_pa * std::tan(soil.friction_angle_rad);
-  return strength * mobilised(displacement_m, soil.shear_modulus_m);
+  return strength * mobilised(displacement_m, 1.0 / soil.shear_modulus_m);
 }
 
 double metal_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m) {
   return normal_pa * std::tan(soil.soil_metal_friction_angle_rad) *
-         mobilised(displacement_m, soil.shear_modulus_m);
+         mobilised(displacement_m, 1.0 / soil.shear_modulus_m);
 }
 
 ShearStrength shear_strength(const SoilParams& soil) {
   return {soil.cohesion_pa, std::tan(soil.friction_angle_rad),
-          std::tan(soil.soil_metal_friction_angle_rad), soil.shear_modulus_m};
+          std::tan(soil.soil_metal_friction_angle_rad), soil.shear_modulus_m,
+          1.0 / soil.shear_modulus_m};
+}
+
+BladeAxes blade_axes(const WheelGeometry& wheel) {
+  return {wheel.bladed, std::sin(wheel.blade_inclination_rad),
+          std::cos(wheel.blade_inclination_rad)};
 }
 
 SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel, int handedness,
                        double normal_pa, double tangential_displacement_m,
                        double lateral_displacement_m) {
-  const double jt = tangential_displacement_m, jy = lateral_displacement_m;
-  const double soil_strength = strength.cohesion_pa + normal_pa * strength.tan_friction;
-  const double K = strength.shear_modulus_m;
-  if (!wheel.bladed) {
-    // Isotropic: the soil's strength along the displacement's own direction.
-    const double length = std::hypot(jt, jy);
-    if (length <= 0.0) return {};
-    const double tau = soil_strength * mobilised(length, K);
-    return {tau * jt / length, tau * jy / length};
-  }
-  const double h = handedness < 0 ? -1.0 : 1.0;
-  const double sin_i = std::sin(wheel.blade_inclination_rad);
-  const double cos_i = std::cos(wheel.blade_inclination_rad);
-  const double along_t = h * sin_i, along_y = cos_i;     // b, along the blade
-  const double across_t = cos_i, across_y = -h * sin_i;  // n_b, across it
-  const double across = soil_strength * mobilised(jt * across_t + jy * across_y, K);
-  const double along =
-      normal_pa * strength.tan_metal_friction * mobilised(jt * along_t + jy * along_y, K);
-  return {across * across_t + along * along_t, across * across_y + along * along_y};
+  return rim_shear(strength, blade_axes(wheel), handedness, normal_pa, tangential_displacement_m,
+                   lateral_displacement_m);
 }
 
 SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,
@@ -157,11 +144,18 @@ double equilibrium_sinkage_m(const SoilParams& soil, const WheelGeometry& wheel,
   return 0.5 * (low + high);
 }
 
+double passive_earth_coefficient(const SoilParams& soil) {
+  return std::pow(std::tan(std::numbers::pi / 4.0 + soil.friction_angle_rad / 2.0), 2);
+}
+
 double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double sinkage_m) {
+  return sidewall_resistance_n(soil, passive_earth_coefficient(soil), rim_radius_m, sinkage_m);
+}
+
+double sidewall_resistance_n(const SoilParams& soil, double passive, double rim_radius_m,
+                             double sinkage_m) {
   const double z = std::clamp(sinkage_m, 0.0, rim_radius_m);
   if (z <= 0.0) return 0.0;
-  const double passive =
-      std::pow(std::tan(std::numbers::pi / 4.0 + soil.friction_angle_rad / 2.0), 2);
   const double weight_density = soil.bulk_density_kgpm3 * soil.gravity_mps2;
   constexpr int kSamples = 16;
   const double step = z / kSamples;

@@ -25,6 +25,9 @@
 // through n and θm; the shear itself comes from the displacement j (wheel_soil.hpp).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "sim/soil/soil_params.hpp"
 
 namespace marsokhod::sim::soil {
@@ -51,6 +54,16 @@ ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinka
 double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,
                         double width_m, double theta_rad);
 
+// θ* of normal_stress_pa at θ within the arc: θ ahead of θm, the front's profile compressed onto
+// [θ2, θm] behind it. It is linear in θ on either side of θm, so samples evenly spaced in θ have
+// evenly spaced θ* there (wheel_soil.cpp steps their cosines by rotation).
+double equivalent_angle_rad(const ContactArc& arc, double theta_rad);
+
+// σ from cos θ*: (k_c/b + k_φ)·(r·max(cos θ* − cos θ1, 0))^n, the power as exp(n·ln x) (within a
+// few units in the last place of std::pow, at a third of its cost; n = 1 exactly is x itself).
+inline double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc,
+                                        double rim_radius_m, double cos_equivalent);
+
 // Signed Janosi–Hanamoto shear of soil on soil and of soil on metal, for a signed displacement.
 double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m);
 double metal_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m);
@@ -70,11 +83,35 @@ struct ShearStrength {
   double tan_friction = 0.0;        // tan φ
   double tan_metal_friction = 0.0;  // tan δ
   double shear_modulus_m = 0.01;    // K
+  double inverse_shear_modulus_per_m = 100.0;  // 1/K, so that the hot loop multiplies
 };
 ShearStrength shear_strength(const SoilParams& soil);
 SurfaceShear rim_shear(const ShearStrength& strength, const WheelGeometry& wheel, int handedness,
                        double normal_pa, double tangential_displacement_m,
                        double lateral_displacement_m);
+// The blade's direction cosines, taken once per wheel: sin i and cos i of its inclination.
+struct BladeAxes {
+  bool bladed = true;
+  double sin_inclination = 0.0;
+  double cos_inclination = 1.0;
+};
+BladeAxes blade_axes(const WheelGeometry& wheel);
+// The same in two parts, so that a loop can take the exponentials of all its samples first: the
+// blade's axes in (t, y) for a handedness — b = (h sin i, cos i) along it, n_b = (cos i, −h sin i)
+// across it — and the bladed rim's shear from the signed mobilised shares across and along it,
+// 1 − e^(−|j·n_b|/K) and 1 − e^(−|j·b|/K) signed as their displacements.
+struct BladeFrame {
+  double along_t = 0.0, along_y = 1.0, across_t = 1.0, across_y = 0.0;
+  double across_displacement_m(double jt, double jy) const { return jt * across_t + jy * across_y; }
+  double along_displacement_m(double jt, double jy) const { return jt * along_t + jy * along_y; }
+};
+inline BladeFrame blade_frame(const BladeAxes& blades, int handedness);
+inline SurfaceShear bladed_shear(const ShearStrength& strength, const BladeFrame& blade,
+                                 double normal_pa, double across_share, double along_share);
+// (Inline below: they run for every sample of every lane of every wheel.)
+inline SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades,
+                              int handedness, double normal_pa, double tangential_displacement_m,
+                              double lateral_displacement_m);
 SurfaceShear rim_shear(const SoilParams& soil, const WheelGeometry& wheel, int handedness,
                        double normal_pa, double tangential_displacement_m,
                        double lateral_displacement_m);
@@ -104,5 +141,61 @@ double equilibrium_sinkage_m(const SoilParams& soil, const WheelGeometry& wheel,
 //   p(d) = ρ g d N_φ + 2 c √N_φ,  N_φ = tan²(45° + φ/2),
 // over the wheel's submerged side face (a circular segment of depth z), in N.
 double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double sinkage_m);
+// N_φ, and the same resistance with it taken once.
+double passive_earth_coefficient(const SoilParams& soil);
+double sidewall_resistance_n(const SoilParams& soil, double passive_coefficient,
+                             double rim_radius_m, double sinkage_m);
+
+namespace detail {
+
+// Janosi–Hanamoto's mobilised share 1 − e^(−|j|/K), signed as j.
+inline double mobilised(double displacement_m, double inverse_shear_modulus_per_m) {
+  const double share = 1.0 - std::exp(-std::abs(displacement_m) * inverse_shear_modulus_per_m);
+  return displacement_m < 0.0 ? -share : share;
+}
+
+}  // namespace detail
+
+inline double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc,
+                                        double rim_radius_m, double cos_equivalent) {
+  const double depth = rim_radius_m * std::max(cos_equivalent - arc.cos_entry, 0.0);
+  if (depth <= 0.0) return 0.0;
+  const double n = arc.sinkage_exponent;
+  return modulus_pa * (n == 1.0 ? depth : std::exp(n * std::log(depth)));
+}
+
+inline BladeFrame blade_frame(const BladeAxes& blades, int handedness) {
+  const double h = handedness < 0 ? -1.0 : 1.0;
+  const double sin_i = blades.sin_inclination, cos_i = blades.cos_inclination;
+  return {h * sin_i, cos_i, cos_i, -h * sin_i};
+}
+
+inline SurfaceShear bladed_shear(const ShearStrength& strength, const BladeFrame& blade,
+                                 double normal_pa, double across_share, double along_share) {
+  const double soil_strength = strength.cohesion_pa + normal_pa * strength.tan_friction;
+  const double across = soil_strength * across_share;
+  const double along = normal_pa * strength.tan_metal_friction * along_share;
+  return {across * blade.across_t + along * blade.along_t,
+          across * blade.across_y + along * blade.along_y};
+}
+
+inline SurfaceShear rim_shear(const ShearStrength& strength, const BladeAxes& blades,
+                              int handedness, double normal_pa, double tangential_displacement_m,
+                              double lateral_displacement_m) {
+  const double jt = tangential_displacement_m, jy = lateral_displacement_m;
+  const double soil_strength = strength.cohesion_pa + normal_pa * strength.tan_friction;
+  const double inverse_K = strength.inverse_shear_modulus_per_m;
+  if (!blades.bladed) {
+    // Isotropic: the soil's strength along the displacement's own direction.
+    const double length = std::hypot(jt, jy);
+    if (length <= 0.0) return {};
+    const double tau = soil_strength * detail::mobilised(length, inverse_K);
+    return {tau * jt / length, tau * jy / length};
+  }
+  const BladeFrame blade = blade_frame(blades, handedness);
+  return bladed_shear(strength, blade, normal_pa,
+                      detail::mobilised(blade.across_displacement_m(jt, jy), inverse_K),
+                      detail::mobilised(blade.along_displacement_m(jt, jy), inverse_K));
+}
 
 }  // namespace marsokhod::sim::soil

@@ -92,6 +92,44 @@ TEST(RoverSoftSoil, ClimbsTenDegreesButNotTwentyFive) {
   EXPECT_LT(advanced_m(25.0), 0.0);
 }
 
+// The excavation of m4 (chapter 5.2, Field Experiment 6.3: "from a standing position, Marsokhod
+// excavates a layer of up to 9 cm of sand" with the front-right wheel turning slowly): the front-
+// right wheel alone at 1 rad/s, the others still. Slipping fully, its blades carry soil out of the
+// rut and it sinks ≈ 3 mm/s; after ≈ 20 s it sinks no further, its blade tips 9.2 cm below the
+// sand's surface (0.125 m − its centre's height), though it keeps spinning and slipping in its
+// hole. The rest of the rover neither moves nor sinks.
+TEST(RoverSoftSoil, TrenchWithTheFrontRightWheelDigsAboutNineCentimetres) {
+  RoverPhysics physics(Params{}, soft_flat());
+  run(physics, 2000);
+  const GroundTruth standing = physics.truth();
+  MotorVector trench{};
+  trench[kFrontRight] = 1.0;
+  physics.set_drive(drive_at(trench));
+  const auto blade_depth_m = [&] {
+    return 0.125 - physics.truth().wheel_position_m[kFrontRight][2];
+  };
+  const double at_rest = blade_depth_m();
+  run(physics, 10000);
+  const double after_10_s = blade_depth_m();
+  run(physics, 15000);
+  const double after_25_s = blade_depth_m();
+  run(physics, 5000);
+  const double after_30_s = blade_depth_m();
+  const GroundTruth end = physics.truth();
+  expect_healthy(physics);
+  EXPECT_GT(after_10_s - at_rest, 0.02);  // digging
+  EXPECT_NEAR(after_30_s, after_25_s, 0.002);  // and stopped
+  EXPECT_GT(after_30_s, 0.07);
+  EXPECT_LT(after_30_s, 0.11);
+  for (std::size_t wheel : {kFrontLeft, kCenterLeft, kCenterRight, kBackLeft, kBackRight}) {
+    EXPECT_NEAR(end.wheel_position_m[wheel][2], standing.wheel_position_m[wheel][2], 0.01)
+        << kMotorNames[wheel];
+  }
+  EXPECT_LT(std::hypot(end.position_m[0] - standing.position_m[0],
+                       end.position_m[1] - standing.position_m[1]),
+            0.01);
+}
+
 TEST(RoverSoftSoil, TwoRunsAreBitIdentical) {
   const auto run_once = [] {
     RoverPhysics physics(Params{}, soft_flat());

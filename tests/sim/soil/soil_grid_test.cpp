@@ -70,6 +70,28 @@ TEST(SoilGrid, PressYieldsToTheRimAndConservesVolume) {
   expect_balanced(grid);
 }
 
+// The bench's rake (RoverPhysics::level_soil): after a press and an excavation, level() puts every
+// cell back at its initial surface with no sinkage or compaction, and the books start again.
+TEST(SoilGrid, LevelRakesEveryCellBackToItsInitialSurface) {
+  SoilGrid grid(small_grid(), dry_sand(), [](double x, double) { return 0.1 * x; });
+  const Cylinder wheel{{0.0, 0.0, 0.115 - 0.02}, {0.0, 1.0, 0.0}, 0.115, 0.15};
+  const Footprint footprint = grid.press(wheel);
+  grid.excavate(footprint, wheel, {1.0, 0.0, 0.0}, 0.13, 1e-5);
+  grid.relax(footprint, 3, 4);
+  ASSERT_GT(grid.volumes().cut_m3, 0.0);
+  grid.level();
+  for (int iy = 0; iy < grid.spec().cells_y; ++iy) {
+    for (int ix = 0; ix < grid.spec().cells_x; ++ix) {
+      EXPECT_EQ(grid.cell_surface_m(ix, iy), grid.cell_initial_m(ix, iy));
+      EXPECT_EQ(grid.cell_sinkage_m(ix, iy), 0.0);
+      EXPECT_EQ(grid.cell_compaction_m(ix, iy), 0.0);
+    }
+  }
+  EXPECT_EQ(grid.volumes().cut_m3, 0.0);
+  EXPECT_EQ(grid.volumes().fill_m3, 0.0);
+  EXPECT_EQ(grid.volumes().excavated_m3, 0.0);
+}
+
 // A 10 cm column of sand slumps until no two neighbours differ by more than cell·tan(repose),
 // with every cubic millimetre accounted for.
 TEST(SoilGrid, SlopesRelaxToTheAngleOfRepose) {

@@ -110,6 +110,37 @@ TEST(WheelSoil, SidewaysDriftIsResistedByShearAndSidewall) {
   }
 }
 
+// Procedure 5.1's criterion that the exterior wheels, which slide sideways in a spin, should turn
+// faster (F̂ > 1): a wheel spinning faster resists being dragged sideways less. The rim carries
+// the lateral displacement from the entry, j_y(θ) = −v_y (θ1 − θ)/ω, so at a higher spin less of
+// it builds up under the wheel and less of the soil's lateral shear is mobilised. It is the
+// shear's own kinematics: blades across the axle (i = 0) show it as well as inclined ones. The
+// resistance is the mean of the forces against a drift either way (which cancels the inclined
+// blades' own push); 2 cm deep, 5 cm/s sideways, not advancing.
+TEST(WheelSoil, SpinningFasterLowersTheLateralResistance) {
+  const auto resistance = [](const WheelGeometry& wheel, double spin_radps) {
+    const auto force = [&](double lateral_mps) {
+      WheelSoilContact contact(dry_sand(), wheel);
+      const std::vector<double> lanes(3, 0.022);
+      WheelWrench wrench;
+      for (int i = 0; i < 2000; ++i) {
+        const WheelKinematics kinematics{
+            {0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {0.0, lateral_mps, 0.0}, spin_radps};
+        wrench = contact.step(kinematics, kUp, lanes, kDt);
+      }
+      return wrench.diagnostics.lateral_n;
+    };
+    return 0.5 * (force(-0.05) - force(0.05));
+  };
+  WheelGeometry inclined, straight;
+  straight.blade_inclination_rad = 0.0;
+  for (const WheelGeometry& wheel : {inclined, straight}) {
+    const double slow = resistance(wheel, 0.5), fast = resistance(wheel, 2.0);
+    EXPECT_GT(slow, 0.1 * kWheelLoadN) << "i = " << wheel.blade_inclination_rad;
+    EXPECT_LT(fast, 0.7 * slow) << "i = " << wheel.blade_inclination_rad;
+  }
+}
+
 // No slip ratio: a wheel that has crept 2 mm downhill and then stands still (v = 0, ω = 0) keeps
 // the holding force of a spring, step after step, instead of losing it with its speed.
 TEST(WheelSoil, StillWheelIsHeldLikeASpring) {
