@@ -29,7 +29,7 @@
 //   backward undoes it with the same axle placement); the ε-formula uses the measured w6, w7.
 // - The driving intent ϱ (Remark 5.5) is latched when the gait starts and re-read at each state
 //   change: backward mirrors the table (gait_table.hpp). Held joints keep the (5.3)-clamped
-//   position measured then.
+//   position measured then, as far as the behaviours' bounds of each cycle allow.
 // - Selecting a different gait restarts at state 0 (segment (last, 0)); Gait::kNone stops the
 //   sequencer (output.active = false, everything else zero).
 // Every target lies in (5.3). Inputs are measured values; time enters only as the period h.
