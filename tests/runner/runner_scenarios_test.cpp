@@ -87,7 +87,7 @@ TEST(ShippedScenarios, IncludeTheRequiredSet) {
         "worm-like-slope-slant-on", "worm-like-slope-slant-off",
         "front-wheel-walking-slope-slant-on", "front-wheel-walking-slope-slant-off",
         "rear-wheel-walking-slope-slant-on", "rolking-extended-base-slope-slant-on",
-        "rolking-extended-base-slope-slant-off"}) {
+        "rolking-extended-base-slope-slant-off", "broken-center-wheel-turning"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
   }
 }
