@@ -162,9 +162,14 @@ MotionController::JointCommands MotionController::joint_commands(const MotionInp
                                                                  DriverStatus& status) {
   const control::MotionState front{predicted_joint_position(kFrontJoint, status), joint_velocity_[0]};
   const control::MotionState rear{predicted_joint_position(kRearJoint, status), joint_velocity_[1]};
+  // The gait runs inside the behaviours' bounds of this cycle (6.4) (chapter 6.2's summation):
+  // its targets are clipped to them and (4.16) pulls a joint back inside.
+  const JointBoundsStatus& b = status.joint_bounds;
   const mobility::GaitOutput gait = gait_.update(
       {input.targets.gait, input.targets.gait_speed, intent_, front, rear, input.period_s,
-       status.motors[kFrontJoint].velocity_radps, status.motors[kRearJoint].velocity_radps});
+       status.motors[kFrontJoint].velocity_radps, status.motors[kRearJoint].velocity_radps,
+       mobility::JointBounds{b.front_min_rad, b.front_max_rad},
+       mobility::JointBounds{b.rear_min_rad, b.rear_max_rad}});
   status.gait = input.targets.gait;
   status.gait_state = gait.state_index;
   status.gait_speed = input.targets.gait_speed;
@@ -188,7 +193,6 @@ MotionController::JointCommands MotionController::joint_commands(const MotionInp
        std::clamp(input.targets.v7_radps, -limit, limit)},
       input.targets.v2_radps * settings.speed_scale, w_max, std::max(n6, 1e-9),
       std::max(n7, 1e-9), settings.switches);
-  const JointBoundsStatus& b = status.joint_bounds;
   // A position target (Procedure 4.17) is reached with (4.15), inside the bounds (6.4).
   const auto& p6d = input.targets.front_joint_target_rad;
   const auto& p7d = input.targets.rear_joint_target_rad;

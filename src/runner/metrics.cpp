@@ -36,7 +36,9 @@ const std::vector<std::string>& phase_metric_names() {
       "duration_s", "distance_m", "forward_distance_m", "path_length_m", "mean_speed_mps",
       "yaw_change_rad", "yaw_rate_mean_radps", "climb_m", "energy_used_j", "mean_abs_slip_mps",
       "max_voltage_drop_v", "final_front_joint_rad", "final_rear_joint_rad",
-      "final_joint_error_rad", "max_joint_error_rad", "max_joint_bound_excess_rad"};
+      "final_joint_error_rad", "max_joint_error_rad", "max_joint_bound_excess_rad",
+      "min_front_joint_rad", "max_front_joint_rad", "min_rear_joint_rad", "max_rear_joint_rad",
+      "gait_state_changes"};
   return names;
 }
 
@@ -84,12 +86,13 @@ Metrics::Snapshot Metrics::snapshot(const Session& session, double time_s) const
   s.slip_samples = slip_samples_;
   s.joint_rad = {t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint]};
   s.joint_error_rad = joint_error_rad(t);
+  s.gait_state_changes = gait_state_changes_;
   return s;
 }
 
 void Metrics::observe_phases(const Session& session, double time_s,
                              std::optional<double> voltage_drop_v, double joint_error_rad,
-                             double bound_excess_rad) {
+                             double bound_excess_rad, const std::array<double, 2>& joint_rad) {
   for (PhaseWindow& w : phases_) {
     if (!w.start && time_s >= w.phase.from_s - kTimeEpsilonS) w.start = snapshot(session, time_s);
     if (!w.start || w.end) continue;
@@ -99,6 +102,10 @@ void Metrics::observe_phases(const Session& session, double time_s,
     }
     w.max_joint_error_rad = std::max(w.max_joint_error_rad, joint_error_rad);
     w.max_bound_excess_rad = std::max(w.max_bound_excess_rad, bound_excess_rad);
+    for (std::size_t j = 0; j < 2; ++j) {
+      w.min_joint_rad[j] = std::min(w.min_joint_rad[j], joint_rad[j]);
+      w.max_joint_rad[j] = std::max(w.max_joint_rad[j], joint_rad[j]);
+    }
     if (voltage_drop_v) w.max_voltage_drop_v = std::max(w.max_voltage_drop_v, *voltage_drop_v);
   }
 }
@@ -144,7 +151,8 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   if (cycle.driver_running && s.mode == driver::DriverMode::kDriving && s.reference_supply_v > 0.0) {
     voltage_drop_v = s.reference_supply_v - s.supply_v;
   }
-  observe_phases(session, now, voltage_drop_v, joint_error_rad(t), bound_excess_rad);
+  observe_phases(session, now, voltage_drop_v, joint_error_rad(t), bound_excess_rad,
+                 {t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint]});
   if (!cycle.driver_running) return;
   observe_odometry(session, t);
   if (voltage_drop_v) {
@@ -203,6 +211,13 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
   m[p + "final_joint_error_rad"] = end.joint_error_rad;
   m[p + "max_joint_error_rad"] = w.max_joint_error_rad;
   m[p + "max_joint_bound_excess_rad"] = w.max_bound_excess_rad;
+  // A phase without a cycle inside it has no extremes: its end state's angles.
+  const auto extreme = [&](double value, double fallback) { return std::abs(value) < 1e8 ? value : fallback; };
+  m[p + "min_front_joint_rad"] = extreme(w.min_joint_rad[0], end.joint_rad[0]);
+  m[p + "max_front_joint_rad"] = extreme(w.max_joint_rad[0], end.joint_rad[0]);
+  m[p + "min_rear_joint_rad"] = extreme(w.min_joint_rad[1], end.joint_rad[1]);
+  m[p + "max_rear_joint_rad"] = extreme(w.max_joint_rad[1], end.joint_rad[1]);
+  m[p + "gait_state_changes"] = end.gait_state_changes - start.gait_state_changes;
 }
 
 void Metrics::observe_odometry(const Session& session, const sim::GroundTruth& t) {

@@ -31,7 +31,9 @@
 // final_rear_joint_rad and final_joint_error_rad (at the phase's end, to the targets in force
 // then), max_joint_error_rad (the largest joint error to the targets in force during the phase,
 // 0 without targets: Procedure 4.17's "within 0.05 rad during 1 s" over a 1-s phase),
-// max_joint_bound_excess_rad (beyond (5.3), ground truth, during the phase). A phase starts at
+// max_joint_bound_excess_rad (beyond (5.3), ground truth, during the phase), min_front_joint_rad,
+// max_front_joint_rad, min_rear_joint_rad and max_rear_joint_rad (the joint angles' extremes
+// during the phase, ground truth: what the slant response (6.4) bounds), gait_state_changes. A phase starts at
 // the first cycle at or after from_s and ends at the first at or after to_s (or with the run).
 #pragma once
 
@@ -75,6 +77,7 @@ class Metrics {
     std::uint64_t slip_samples = 0;
     std::array<double, 2> joint_rad{};
     double joint_error_rad = 0.0;
+    double gait_state_changes = 0.0;
   };
   struct PhaseWindow {
     Phase phase;
@@ -82,12 +85,15 @@ class Metrics {
     double max_voltage_drop_v = 0.0;
     double max_joint_error_rad = 0.0;
     double max_bound_excess_rad = 0.0;
+    std::array<double, 2> min_joint_rad{1e9, 1e9};    // p6, p7 (ground truth)
+    std::array<double, 2> max_joint_rad{-1e9, -1e9};
   };
 
   Snapshot snapshot(const Session& session, double time_s) const;
   double joint_error_rad(const sim::GroundTruth& truth) const;
   void observe_phases(const Session& session, double time_s, std::optional<double> voltage_drop_v,
-                      double joint_error_rad, double bound_excess_rad);
+                      double joint_error_rad, double bound_excess_rad,
+                      const std::array<double, 2>& joint_rad);
   static void add_phase_metrics(const PhaseWindow& window, const Snapshot& end,
                                 std::map<std::string, double>& metrics);
 

@@ -1,8 +1,11 @@
 // The motion controller's tracking (observe): l = w − ν of Definition 4.9 and the torque τ of
-// (4.6) in the status, with Procedure 4.13's weight.
+// (4.6) in the status, with Procedure 4.13's weight; a gait inside the slant bounds (6.4).
 #include "driver/motion_controller.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
 
 namespace marsokhod::driver {
 namespace {
@@ -29,6 +32,46 @@ TEST(MotionControllerTracking, StatusCarriesTheTorqueOfProcedure4_13sWeight) {
     EXPECT_NEAR(m.torque_nm, torque_nm, 1e-6);
     // A still motor at d = 0: no load, no torque.
     EXPECT_EQ(status.motors[kCenterLeft].torque_nm, 0.0);
+  }
+}
+
+// Front-wheel walking on a 20° ascent (the accelerometer reads gravity pitched nose up: a1 =
+// −g·sin σ < 0), the joints contracted at C = ∓1.2121 and held there (the shafts do not move).
+// After 1000 cycles (λ^1000 = 4e-5 of the start left in the gravity estimate) σ = 20° and (6.4)
+// gives p7_min = γ(20°) = 1.5836. The gait holds the rear joint, at C, below that bound: (4.16)
+// pulls it up, and its velocity state, the command v7, has grown toward +C. Without the slant
+// response the bound stays at C and the held joint is not moved.
+TEST(MotionControllerGait, AJointHeldByAGaitIsPulledInsideTheSlantBound) {
+  const Params params;
+  for (const bool slant_response : {true, false}) {
+    SCOPED_TRACE(slant_response);
+    MotionController controller(params);
+    MotorVector p{};
+    p[kFrontJoint] = -1.2121;
+    p[kRearJoint] = 1.2121;
+    controller.reset_joint_positions(p);
+    RuntimeSettings settings = runtime_settings_from(params);
+    settings.switches.slant_response = slant_response;
+    MotionInput input;
+    input.period_s = params.cycle.period_s;
+    input.shaft_position_rad = p;
+    input.reference_supply_v = 24.0;
+    const double sigma = 20.0 * std::numbers::pi / 180.0;
+    input.accel_mps2 = {-9.81 * std::sin(sigma), 0.0, -9.81 * std::cos(sigma)};
+    input.targets.gait = mobility::Gait::kFrontWheelWalking;
+    input.targets.gait_speed = 1.0;
+    DriverStatus status;
+    for (int k = 0; k < 1000; ++k) controller.update(input, settings, status);
+    EXPECT_NEAR(status.slope_rad, sigma, 0.005);
+    // (C,H) was reached in the first cycle, at σ = 0; (E,H) is not, the shafts standing still.
+    EXPECT_EQ(status.gait_state, 1u);
+    if (slant_response) {
+      EXPECT_NEAR(status.joint_bounds.rear_min_rad, 1.5836, 0.005);
+      EXPECT_GT(status.commands.v7_radps, 0.5);
+    } else {
+      EXPECT_NEAR(status.joint_bounds.rear_min_rad, 1.2121, 1e-9);
+      EXPECT_NEAR(status.commands.v7_radps, 0.0, 1e-6);
+    }
   }
 }
 

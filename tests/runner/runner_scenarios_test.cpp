@@ -81,7 +81,15 @@ TEST(ShippedScenarios, IncludeTheRequiredSet) {
         "front-wheel-walking", "rear-wheel-walking", "worm-like", "rolking-extended-base",
         "slope-slant-on", "slope-slant-off", "power-management-on", "power-management-off",
         "load-distribution-off", "load-distribution-v", "load-distribution-s", "broken-wheel",
-        "link-loss", "dead-man"}) {
+        "link-loss", "dead-man",
+        // Issue #17: the gaits inside the behaviours' bounds, Field Experiment 6.2 in full.
+        "rolking-turning", "rolking-slope-slant-on", "rolking-slope-slant-off",
+        "worm-like-slope-slant-on", "worm-like-slope-slant-off",
+        "front-wheel-walking-slope-slant-on", "front-wheel-walking-slope-slant-off",
+        "rear-wheel-walking-slope-slant-on", "rolking-extended-base-slope-slant-on",
+        "rolking-extended-base-slope-slant-off", "broken-center-wheel-turning",
+        // Issue #15: the failsafes that need an estimate.
+        "tip-over", "stuck"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
   }
 }

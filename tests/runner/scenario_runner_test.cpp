@@ -90,6 +90,15 @@ TEST(ScenarioRunner, ReportsTheRunsAndEachPhasesMetrics) {
                    r.metrics.at("driving.path_length_m") / r.metrics.at("driving.duration_s"));
   EXPECT_DOUBLE_EQ(r.metrics.at("driving.yaw_rate_mean_radps"),
                    r.metrics.at("driving.yaw_change_rad") / r.metrics.at("driving.duration_s"));
+  // The joints' extremes bracket the angle they end at; no gait runs, no state changes.
+  for (const char* joint : {"front", "rear"}) {
+    const std::string j(joint);
+    EXPECT_LE(r.metrics.at("driving.min_" + j + "_joint_rad"),
+              r.metrics.at("driving.max_" + j + "_joint_rad"));
+    EXPECT_NEAR(r.metrics.at("driving.final_" + j + "_joint_rad"),
+                r.metrics.at("driving.max_" + j + "_joint_rad"), 0.01);
+  }
+  EXPECT_EQ(r.metrics.at("driving.gait_state_changes"), 0.0);
 }
 
 TEST(ScenarioRunner, EvaluatesRatiosAndReportsAMissingMetric) {

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <tuple>
+#include <stdexcept>
+#include <string>
 
 #include "core/control/bounded_velocity_control.hpp"
 #include "core/checks/checks.hpp"
@@ -27,6 +30,18 @@ void check_input(const GaitInput& input) {
     checks::law::require_finite(*input.rear_measured_radps, kWhere, "rear_measured_radps (w7)");
   }
   checks::law::require_positive(input.period_s, kWhere, "period_s (h)");
+  const auto check_bounds = [](const std::optional<JointBounds>& bounds, const char* min_name,
+                               const char* max_name) {
+    if (!bounds) return;
+    checks::law::require_finite(bounds->min_rad, kWhere, min_name);
+    checks::law::require_finite(bounds->max_rad, kWhere, max_name);
+    if (bounds->min_rad > bounds->max_rad) {
+      throw std::invalid_argument(std::string(kWhere) + ": " + min_name + " exceeds " + max_name +
+                                  "; the behaviours' bounds must satisfy min ≤ max");
+    }
+  };
+  check_bounds(input.front_bounds, "front_bounds.min_rad (p6_min)", "front_bounds.max_rad (p6_max)");
+  check_bounds(input.rear_bounds, "rear_bounds.min_rad (p7_min)", "rear_bounds.max_rad (p7_max)");
 }
 
 }  // namespace
@@ -53,25 +68,29 @@ GaitOutput GaitSequencer::update(const GaitInput& input) {
   if (input.gait != gait_) {
     start(input);
   }
+  GaitOutput output;
   if (std::abs(input.gait_speed) * max_joint_speed_radps_ > 0.0) {
     forward_ = input.gait_speed > 0.0;
     if (reached(forward_ ? to_ : from_, input)) {
-      advance(forward_, input.intent, input);
+      if (transition_has_room(forward_, input)) {
+        advance(forward_, input.intent, input);
+      } else {
+        output.held_by_bounds = true;
+      }
     }
   }
   const std::size_t index = forward_ ? to_ : from_;
-  const GaitState state = gait_state(gait_, index, intent_);
-  GaitOutput output;
   output.active = true;
   output.state_index = index;
-  output.front_target_rad = stroke_target_rad(state.front, front_strokes_, held_front_rad_);
-  output.rear_target_rad = stroke_target_rad(state.rear, rear_strokes_, held_rear_rad_);
+  std::tie(output.front_target_rad, output.rear_target_rad) = targets(index, input);
   const control::ControlParams full{joints_.control_rate_per_s, max_joint_speed_radps_,
                                     input.period_s};
-  output.front_control_radps = joint_control(input.front_joint, output.front_target_rad,
-                                             input.gait_speed, front_bounds_, full);
+  output.front_control_radps =
+      joint_control(input.front_joint, output.front_target_rad, input.gait_speed,
+                    effective_bounds(front_bounds_, input.front_bounds), full);
   output.rear_control_radps =
-      joint_control(input.rear_joint, output.rear_target_rad, input.gait_speed, rear_bounds_, full);
+      joint_control(input.rear_joint, output.rear_target_rad, input.gait_speed,
+                    effective_bounds(rear_bounds_, input.rear_bounds), full);
   output.front_command_radps =
       control::step(input.front_joint, output.front_control_radps, full).velocity;
   output.rear_command_radps =
@@ -94,8 +113,42 @@ void GaitSequencer::latch_held_positions(const GaitInput& input) {
   held_rear_rad_ = rear_bounds_.clamp(input.rear_joint.position);
 }
 
-bool GaitSequencer::reached(std::size_t index, const GaitInput& input) const {
+JointBounds GaitSequencer::effective_bounds(const JointBounds& own,
+                                           const std::optional<JointBounds>& given) const {
+  if (!given) return own;
+  const JointBounds both{std::max(own.min_rad, given->min_rad), std::min(own.max_rad, given->max_rad)};
+  // Disjoint only when a behaviour's bound lies in the stroke's backlash margin: the safety
+  // bound wins.
+  return both.min_rad <= both.max_rad ? both : *given;
+}
+
+std::pair<double, double> GaitSequencer::targets(std::size_t index, const GaitInput& input) const {
   const GaitState state = gait_state(gait_, index, intent_);
+  return {effective_bounds(front_bounds_, input.front_bounds)
+              .clamp(stroke_target_rad(state.front, front_strokes_, held_front_rad_)),
+          effective_bounds(rear_bounds_, input.rear_bounds)
+              .clamp(stroke_target_rad(state.rear, rear_strokes_, held_rear_rad_))};
+}
+
+bool GaitSequencer::transition_has_room(bool forward, const GaitInput& input) const {
+  const std::size_t count = gait_states(gait_).size();
+  const std::size_t next = forward ? (to_ + 1) % count : (from_ + count - 1) % count;
+  // As advance() would start it: a new intent mirrors the table and re-latches the held joints.
+  const bool relatch = input.intent != intent_;
+  const GaitState state = gait_state(gait_, next, input.intent);
+  const double held_front =
+      relatch ? front_bounds_.clamp(input.front_joint.position) : held_front_rad_;
+  const double held_rear = relatch ? rear_bounds_.clamp(input.rear_joint.position) : held_rear_rad_;
+  const double front = effective_bounds(front_bounds_, input.front_bounds)
+                           .clamp(stroke_target_rad(state.front, front_strokes_, held_front));
+  const double rear = effective_bounds(rear_bounds_, input.rear_bounds)
+                          .clamp(stroke_target_rad(state.rear, rear_strokes_, held_rear));
+  // The joints stand at the reached state: a next state as near would be reached at once.
+  return std::abs(front - input.front_joint.position) > joints_.target_tolerance_rad ||
+         std::abs(rear - input.rear_joint.position) > joints_.target_tolerance_rad;
+}
+
+bool GaitSequencer::reached(std::size_t index, const GaitInput& input) const {
   // "Stopped" is the joint's measured velocity when there is one: the commanded ŵ of (4.13) can
   // stay a few hundredths of a rad/s off zero while the motor stands in its dead zone.
   const auto at = [&](const control::MotionState& joint, std::optional<double> measured_radps,
@@ -103,10 +156,9 @@ bool GaitSequencer::reached(std::size_t index, const GaitInput& input) const {
     return std::abs(joint.position - target_rad) <= joints_.target_tolerance_rad &&
            std::abs(measured_radps.value_or(joint.velocity)) <= kStoppedSpeedRadps;
   };
-  return at(input.front_joint, input.front_measured_radps,
-            stroke_target_rad(state.front, front_strokes_, held_front_rad_)) &&
-         at(input.rear_joint, input.rear_measured_radps,
-            stroke_target_rad(state.rear, rear_strokes_, held_rear_rad_));
+  const auto [front_target_rad, rear_target_rad] = targets(index, input);
+  return at(input.front_joint, input.front_measured_radps, front_target_rad) &&
+         at(input.rear_joint, input.rear_measured_radps, rear_target_rad);
 }
 
 void GaitSequencer::advance(bool forward, DrivingIntent intent, const GaitInput& input) {

@@ -10,16 +10,26 @@
 //   while the motor stands in its dead zone, which would never count as stopped); then the
 //   segment moves one state on in the direction of s. At most one state per cycle.
 // - The joint controls: (4.15) toward (v_d, p_d) = (0, target) with μ = control_rate_per_s and
-//   C = |s|·max_joint_speed_fraction·w, then clipped by (4.16)'s bound terms for (5.3) at the
-//   full C = max_joint_speed_fraction·w. The clip keeps the joints inside (5.3) even when |s| drops
-//   while a joint moves faster than the new C could brake.
+//   C = |s|·max_joint_speed_fraction·w, then clipped by (4.16)'s bound terms at the full
+//   C = max_joint_speed_fraction·w. The clip keeps the joints inside their bounds even when |s|
+//   drops while a joint moves faster than the new C could brake.
+// - The bounds are (5.3) intersected with the behaviours' bounds of this cycle when given
+//   (GaitInput::front_bounds, rear_bounds: the slant response (6.4), chapter 6.2's summation).
+//   Every target is clipped into them, so a stroke ends at γ(σ) instead of beyond it and the
+//   state is still reached; a joint outside them (a held one, or one the slope's bound moved
+//   past) is pulled back inside by (4.16)'s bound terms at the full C. Where a bound lies beyond
+//   the (5.3) stroke's end (γ(σ) > E), the bound wins: the target is the bound.
+// - A transition the bounds leave no room (neither joint's clipped target differs from the state
+//   just reached by more than target_tolerance_rad) is not started: the gait holds at the state
+//   it reached (output.held_by_bounds) and goes on by itself once the bounds widen again.
+//   Advancing would run through states without moving a joint, one per cycle.
 // - s = 0 holds: no state change, and (4.14) brings both joints to rest (v_d = 0, full C, same
 //   clip). The targets stay.
 // - ρf, ρr follow the rule of the segment's `to` state in both directions (running a transition
 //   backward undoes it with the same axle placement); the ε-formula uses the measured w6, w7.
 // - The driving intent ϱ (Remark 5.5) is latched when the gait starts and re-read at each state
 //   change: backward mirrors the table (gait_table.hpp). Held joints keep the (5.3)-clamped
-//   position measured then.
+//   position measured then, as far as the behaviours' bounds of each cycle allow.
 // - Selecting a different gait restarts at state 0 (segment (last, 0)); Gait::kNone stops the
 //   sequencer (output.active = false, everything else zero).
 // Every target lies in (5.3). Inputs are measured values; time enters only as the period h.
@@ -27,6 +37,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <utility>
 
 #include "core/control/control_params.hpp"
 #include "core/control/motion_model.hpp"
@@ -51,6 +62,10 @@ struct GaitInput {
   // velocities) and for "stopped"; without them the velocity states above are used.
   std::optional<double> front_measured_radps{};
   std::optional<double> rear_measured_radps{};
+  // The behaviours' joint bounds of this cycle, e.g. (6.4)'s slant bounds with the driver's
+  // backlash margin; each within (5.3) and min ≤ max. None: (5.3) alone.
+  std::optional<JointBounds> front_bounds{};
+  std::optional<JointBounds> rear_bounds{};
 };
 
 struct GaitOutput {
@@ -65,6 +80,8 @@ struct GaitOutput {
   double front_command_radps = 0.0;
   double rear_command_radps = 0.0;
   AxleFactors factors;  // ρf, ρr
+  // The next transition has no room inside the bounds: the gait holds at the reached state.
+  bool held_by_bounds = false;
 };
 
 class GaitSequencer {
@@ -84,7 +101,12 @@ class GaitSequencer {
  private:
   void start(const GaitInput& input);
   void latch_held_positions(const GaitInput& input);
+  // A joint's bounds this cycle: (5.3) ∩ the behaviours' bounds (the behaviours' when disjoint).
+  JointBounds effective_bounds(const JointBounds& own, const std::optional<JointBounds>& given) const;
+  // The targets (p6ᵈ, p7ᵈ) of a state, clipped into the bounds of this cycle.
+  std::pair<double, double> targets(std::size_t index, const GaitInput& input) const;
   bool reached(std::size_t index, const GaitInput& input) const;
+  bool transition_has_room(bool forward, const GaitInput& input) const;
   void advance(bool forward, DrivingIntent intent, const GaitInput& input);
   AxleFactors segment_factors(const GaitInput& input) const;
   double joint_control(const control::MotionState& state, double target_rad, double gait_speed,

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -31,9 +32,12 @@ struct Rover {
   control::MotionState front{-1.2121, 0.0};
   control::MotionState rear{1.2121, 0.0};
   GaitOutput last;
+  std::optional<JointBounds> front_bounds;  // the behaviours' bounds (6.4), none: (5.3) alone
+  std::optional<JointBounds> rear_bounds;
 
   GaitOutput cycle(Gait gait, double speed, DrivingIntent intent = DrivingIntent::kForward) {
-    last = sequencer.update({gait, speed, intent, front, rear, kPeriodS});
+    last = sequencer.update({gait, speed, intent, front, rear, kPeriodS, std::nullopt,
+                             std::nullopt, front_bounds, rear_bounds});
     if (last.active) {
       const control::ControlParams model{0.4, kFullSpeedRadps, kPeriodS};
       front = control::step(front, last.front_control_radps, model);
@@ -342,6 +346,91 @@ TEST(GaitSequencer, CommandIsTheNextModelVelocity) {
   EXPECT_NEAR(output.front_command_radps, rover.front.velocity, 1e-15);
 }
 
+// γ(20°) of (6.4): acos(−(a·s + √((a²s + b²)·sin²σ))/b) with s = −1 + sin²20°, a = 0.145,
+// b = 0.413: the rear joint's slant bound p7_min on a 20° ascent.
+constexpr double kSlantBound20DegRad = 1.5836473;
+
+// On a 20° ascent the slant response bounds the rear joint to [γ(σ), 2.55]. The gaits that
+// contract the rear joint to C = 1.2121 end that stroke at γ(σ) instead, reach every state and
+// go round (without the clip the contracted target would lie below the bound and never be
+// reached inside it); the rear joint never leaves the bound.
+TEST(GaitSequencer, SlantBoundClipsTheStrokeAndTheGaitGoesRound) {
+  for (const Gait gait : {Gait::kRolking, Gait::kRearWheelWalking, Gait::kWormLike}) {
+    SCOPED_TRACE(static_cast<int>(gait));
+    Rover rover;
+    rover.front = {-1.7, 0.0};
+    rover.rear = {1.9, 0.0};
+    rover.rear_bounds = JointBounds{kSlantBound20DegRad, 2.55};
+    double lowest_target = 10.0;
+    double lowest_rear = 10.0;
+    std::size_t changes = 0;
+    std::size_t state = rover.cycle(gait, 1.0).state_index;
+    for (int k = 0; k < 40000 && changes < 5; ++k) {
+      const GaitOutput output = rover.cycle(gait, 1.0);
+      lowest_target = std::min(lowest_target, output.rear_target_rad);
+      lowest_rear = std::min(lowest_rear, rover.rear.position);
+      if (output.state_index != state) ++changes;
+      state = output.state_index;
+    }
+    EXPECT_EQ(changes, 5u);
+    EXPECT_NEAR(lowest_target, kSlantBound20DegRad, 1e-12);
+    EXPECT_GE(lowest_rear, kSlantBound20DegRad - 1e-5);
+  }
+}
+
+// Front-wheel walking holds the rear joint where it stood when the gait started, here C =
+// 1.2121, below the slope's bound γ(20°): its target is the bound, (4.16)'s lower term pulls it
+// up at +C (full speed: "back inside as fast as possible"), and the first state is reached once
+// it is there and stopped; from then on it stays inside while the front walks.
+TEST(GaitSequencer, HeldJointIsPulledBackInsideTheSlantBound) {
+  Rover rover;
+  rover.rear_bounds = JointBounds{kSlantBound20DegRad, 2.55};
+  const GaitOutput first = rover.cycle(Gait::kFrontWheelWalking, 1.0);
+  EXPECT_NEAR(first.rear_target_rad, kSlantBound20DegRad, 1e-12);
+  EXPECT_NEAR(first.rear_control_radps, kFullSpeedRadps, 1e-12);
+  int k = 0;
+  while (k < 2000 && rover.last.state_index == 0) {
+    rover.cycle(Gait::kFrontWheelWalking, 1.0);
+    ++k;
+  }
+  ASSERT_EQ(rover.last.state_index, 1u);
+  // 0.37 rad at up to C with μ = 0.4 /s: about 2 s up and 1 s of braking, well under 5 s.
+  EXPECT_LT(k * kPeriodS, 5.0);
+  EXPECT_NEAR(rover.rear.position, kSlantBound20DegRad, 0.05);
+  std::size_t changes = 0;
+  for (std::size_t state = 1; k < 40000 && changes < 3; ++k) {
+    rover.cycle(Gait::kFrontWheelWalking, 1.0);
+    ASSERT_GE(rover.rear.position, kSlantBound20DegRad - 1e-5);
+    if (rover.last.state_index != state) ++changes;
+    state = rover.last.state_index;
+  }
+  EXPECT_EQ(changes, 3u);
+}
+
+// A slope so steep that the bound leaves the rear stroke 0.03 rad (γ(σ) = 2.52 at σ ≈ 63.4°, E =
+// 2.55): rear-wheel walking reaches (H,C) = (H, 2.52) and does not start the transition to
+// (H,E) = (H, 2.55), which would be reached at once; it holds there, saying so. Widened bounds
+// let it go on by itself.
+TEST(GaitSequencer, NoRoomInsideTheBoundsHoldsAtTheReachedState) {
+  Rover rover;
+  rover.front = {-1.5, 0.0};
+  rover.rear = {2.52, 0.0};
+  rover.rear_bounds = JointBounds{2.52, 2.55};
+  for (int k = 0; k < 1000; ++k) {
+    const GaitOutput output = rover.cycle(Gait::kRearWheelWalking, 1.0);
+    ASSERT_EQ(output.state_index, 0u);
+    ASSERT_TRUE(output.held_by_bounds);
+    ASSERT_NEAR(output.rear_target_rad, 2.52, 1e-12);
+  }
+  rover.rear_bounds = JointBounds{2.3, 2.55};
+  for (int k = 0; k < 2000 && rover.last.state_index == 0; ++k) {
+    rover.cycle(Gait::kRearWheelWalking, 1.0);
+  }
+  EXPECT_EQ(rover.last.state_index, 1u);
+  EXPECT_FALSE(rover.last.held_by_bounds);
+  EXPECT_EQ(rover.last.rear_target_rad, 2.55);
+}
+
 TEST(GaitSequencer, RejectsInvalidInputsNamingThem) {
   GaitSequencer sequencer{GeometryParams{}, JointParams{}, GaitParams{}, MotorParams{}};
   GaitInput input{Gait::kRolking, 0.5, DrivingIntent::kForward, {-1.5, 0.0}, {1.5, 0.0}, kPeriodS};
@@ -356,6 +445,12 @@ TEST(GaitSequencer, RejectsInvalidInputsNamingThem) {
   input.gait_speed = 0.5;
   input.period_s = 0.0;
   expect_invalid_argument([&] { sequencer.update(input); }, {"period_s"});
+  input.period_s = kPeriodS;
+  input.rear_bounds = JointBounds{2.0, 1.9};
+  expect_invalid_argument([&] { sequencer.update(input); }, {"rear_bounds.min_rad (p7_min)"});
+  input.rear_bounds.reset();
+  input.front_bounds = JointBounds{-2.55, kNaN};
+  expect_invalid_argument([&] { sequencer.update(input); }, {"front_bounds.max_rad (p6_max)"});
   MotorParams stopped;
   stopped.max_no_load_speed_radps = 0.0;
   expect_invalid_argument(
