@@ -93,6 +93,8 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   Metrics metrics(params, scenario.phases);
   std::size_t next_fault = 0, next_runtime = 0;
   const InputEvent* previous = nullptr;
+  driver::OperatorInput heartbeat;
+  heartbeat.heartbeat = true;
   bool runtime_changed = true;
   const auto wall_start = std::chrono::steady_clock::now();
   while (session.time_s() < scenario.duration_s - 1e-9) {
@@ -109,9 +111,13 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
       runtime_changed = true;
     }
     const InputEvent* event = current_input(scenario, now);
-    if (event != previous && event != nullptr) note_new_input(*event, now, metrics);
+    const bool repeated = event == previous;
+    if (!repeated && event != nullptr) note_new_input(*event, now, metrics);
     previous = event;
     const driver::OperatorInput* input = event && event->input ? &*event->input : nullptr;
+    // The operator's input goes again every cycle until the next [[input]]; a mission is asked
+    // for once and then kept alive by heartbeats, as the console does.
+    if (input != nullptr && input->mission && repeated) input = &heartbeat;
     const CycleRecord& cycle = session.step(input);
     metrics.observe(session, cycle);
     if (recorder) {
