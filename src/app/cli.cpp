@@ -17,6 +17,7 @@
 #include "config/calibration.hpp"
 #include "config/load_params.hpp"
 #include "runner/live.hpp"
+#include "sim/physics/rover_urdf.hpp"
 
 namespace marsokhod::app {
 namespace {
@@ -97,6 +98,7 @@ struct Commands {
   CLI::App* calibrate_cmd = nullptr;
   CLI::App* soak_cmd = nullptr;
   CLI::App* replay_cmd = nullptr;
+  CLI::App* urdf_cmd = nullptr;
 };
 
 void add_console_options(CLI::App* cmd, runner::ConsoleArgs& c) {
@@ -119,6 +121,8 @@ void add_offline_commands(CLI::App& cli, Commands& c) {
   c.decode_cmd->add_option("FILE", decode.file, "candump log file, or - for standard input")
       ->required();
   c.decode_cmd->add_flag("--json", decode.json, "print one JSON object a line");
+  c.urdf_cmd = cli.add_subcommand(
+      "urdf", "print the rover as a URDF, generated from the configuration's geometry");
 
   ScenarioArgs& scenario = c.scenario;
   CLI::App* cmd = c.scenario_cmd = cli.add_subcommand(
@@ -267,6 +271,15 @@ int dispatch(Commands& c, const config::LoadedConfig& loaded, std::istream& in,
   if (c.scenario_cmd->parsed()) return run_scenario(c, loaded, out, err);
   if (c.soak_cmd->parsed()) return run_soak_command(c.soak, loaded, out, err);
   if (c.calibrate_cmd->parsed()) return run_calibrate_command(c.calibrate, loaded, in, out, err);
+  if (c.urdf_cmd->parsed()) {
+    try {
+      out << sim::rover_urdf(loaded.nominal);
+    } catch (const std::exception& e) {
+      err << "marsokhod urdf: " << e.what() << "\n";
+      return kUsageError;
+    }
+    return 0;
+  }
   if (c.replay_cmd->parsed()) return run_replay_command(c.replay_dir, params, out, err);
   if (c.run_cmd->parsed()) {
     c.run.console.web = find_web_dist(c.run.console.web);
