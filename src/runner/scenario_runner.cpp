@@ -89,7 +89,11 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   if (scenario.state_of_charge) session.rover().set_state_of_charge(*scenario.state_of_charge);
   session.set_runtime(link::runtime_settings_from_json(scenario.runtime, session.runtime()));
   std::unique_ptr<Recorder> recorder;
-  if (options.out) recorder = std::make_unique<Recorder>(*options.out, options.config_file, options.calibration_file);
+  if (options.out) {
+    recorder = std::make_unique<Recorder>(
+        *options.out, options.config_file, options.calibration_file, &params,
+        "scenario " + scenario.name + " --seed " + std::to_string(result.seed));
+  }
   Metrics metrics(params, scenario.phases);
   std::size_t next_fault = 0, next_runtime = 0;
   const InputEvent* previous = nullptr;
@@ -134,6 +138,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   result.passed = true;
   for (const Check& c : scenario.checks) result.checks.push_back(evaluate(c, result.metrics));
   for (const CheckResult& c : result.checks) result.passed = result.passed && c.passed;
+  if (recorder) recorder->finish();
   recorder.reset();  // flush before plotting
   if (options.out && options.plots) {
     if (auto note = make_plots(*options.out)) result.notes.push_back(*note);
