@@ -62,4 +62,11 @@ const CycleRecord& Session::step(const driver::OperatorInput* input) {
   return record_;
 }
 
+void follow_truth_odometry(const Session& session, const CycleRecord& cycle,
+                           estimation::OdometryFrameTracker& tracker) {
+  const sim::GroundTruth t = session.rover().truth();
+  tracker.observe(t.position_m[0], t.position_m[1], t.roll_pitch_yaw_rad[2],
+                  cycle.driver_running && session.status().cycle == 1);
+}
+
 }  // namespace marsokhod::runner
