@@ -62,7 +62,8 @@ export function parseNumber(text) {
  * Waypoints typed as "x,y; x,y" in metres (semicolons or new lines between them, a trailing
  * separator allowed), or what is wrong with the text.
  * @param {string} text
- * @param {{ max?: number, limitM?: number }} [limits]  at most `max` waypoints, |x|, |y| ≤ limitM
+ * @param {{ max?: number, limitM?: number }} [limits]  at most `max` waypoints, each within limitM
+ *   of the origin
  * @returns {{ waypoints: Point[], error?: undefined } | { error: string, waypoints?: undefined }}
  */
 export function parseWaypoints(text, { max = 64, limitM = 1000 } = {}) {
@@ -80,8 +81,8 @@ export function parseWaypoints(text, { max = 64, limitM = 1000 } = {}) {
     if (part === '' || xy.length !== 2) return { error: `waypoint ${n}: "${part}" is not x,y (two numbers in metres)` };
     const [x, y] = xy.map(parseNumber);
     if (x === null || y === null) return { error: `waypoint ${n}: "${part}" is not x,y (two numbers in metres)` };
-    if (Math.abs(x) > limitM || Math.abs(y) > limitM) {
-      return { error: `waypoint ${n}: ${x},${y} is out of range; allowed −${limitM}..${limitM} m` };
+    if (Math.hypot(x, y) > limitM) {
+      return { error: `waypoint ${n}: ${x},${y} is ${Math.hypot(x, y).toFixed(1)} m from the origin; at most ${limitM} m` };
     }
     waypoints.push({ x, y });
   }

@@ -13,7 +13,7 @@ import { parseNumber, parseWaypoints, formatWaypoints } from './map.js';
 /** @typedef {import('./protocol').MissionStatus} MissionStatus */
 /** @typedef {import('./map.js').Point} Point */
 
-export const MAX_TURN_DEG = 360;
+export const MAX_TURN_DEG = 720;  // two turns
 export const MAX_MOVE_M = 100;
 export const MAX_WAYPOINTS = 64;
 export const WAYPOINT_LIMIT_M = 1000;

@@ -173,7 +173,9 @@ test('waypoints typed as "x,y; x,y"', () => {
   assert.equal(parseWaypoints('1,2,3').error, 'waypoint 1: "1,2,3" is not x,y (two numbers in metres)');
   assert.equal(parseWaypoints('1,NaN').error, 'waypoint 1: "1,NaN" is not x,y (two numbers in metres)');
   assert.equal(parseWaypoints('1,x').error, 'waypoint 1: "1,x" is not x,y (two numbers in metres)');
-  assert.equal(parseWaypoints('0,0; 1001,0').error, 'waypoint 2: 1001,0 is out of range; allowed −1000..1000 m');
+  assert.equal(parseWaypoints('0,0; 1001,0').error, 'waypoint 2: 1001,0 is 1001.0 m from the origin; at most 1000 m');
+  assert.equal(parseWaypoints('800,-600').waypoints.length, 1, '1000 m from the origin: allowed');
+  assert.equal(parseWaypoints('800,-600.5').error, 'waypoint 1: 800,-600.5 is 1000.3 m from the origin; at most 1000 m');
   assert.equal(parseWaypoints('1,1;2,2;3,3', { max: 2 }).error, '3 waypoints; at most 2');
   assert.equal(parseWaypoints(Array(64).fill('1,1').join(';')).waypoints.length, 64);
   assert.equal(parseWaypoints(Array(65).fill('1,1').join(';')).error, '65 waypoints; at most 64');
@@ -273,7 +275,8 @@ test('mission messages from the form, and what it refuses', () => {
   });
   assert.equal(missionMessage('turn', '').error, 'turn: empty; type a number in °');
   assert.equal(missionMessage('turn', 'left').error, 'turn: "left" is not a number (°)');
-  assert.equal(missionMessage('turn', '400').error, 'turn: 400 is out of range; allowed −360..360 °');
+  assert.equal(missionMessage('turn', '800').error, 'turn: 800 is out of range; allowed −720..720 °');
+  close(missionMessage('turn', '-720').message.angle_rad, -4 * Math.PI, 1e-14, 'two turns clockwise');
   assert.equal(missionMessage('move', '0').error, 'move: 0 m does nothing');
   assert.equal(missionMessage('move', 'NaN').error, 'move: "NaN" is not a number (m)');
   assert.equal(missionMessage('move', '-101').error, 'move: -101 is out of range; allowed −100..100 m');
