@@ -234,8 +234,11 @@ test('the mission form refuses bad input before sending, and a click on the map 
     const canvas = document.getElementById('map-canvas');
     const rect = canvas.getBoundingClientRect();
     const t = window.marsokhod.map.transform;
-    canvas.dispatchEvent(new MouseEvent('click', { clientX: rect.left + x, clientY: rect.top + y, bubbles: true }));
-    return { x: (x - t.ox) / t.scale, y: (t.oy - y) / t.scale };
+    // A mouse event's clientX, clientY are whole pixels.
+    const clientX = Math.round(rect.left + x);
+    const clientY = Math.round(rect.top + y);
+    canvas.dispatchEvent(new MouseEvent('click', { clientX, clientY, bubbles: true }));
+    return { x: (clientX - rect.left - t.ox) / t.scale, y: (t.oy - (clientY - rect.top)) / t.scale };
   }, [box.width / 4, box.height / 2]);
   await page.click('#map-canvas', { position: { x: box.width / 2, y: box.height / 4 } });
   const typed = await page.inputValue('#mission-form input[name=goto]');
