@@ -11,6 +11,7 @@ packages=(
   libmujoco-dev gnuplot-nox
   clang libclang-rt-14-dev
   python3-can can-utils iproute2
+  liburdfdom-tools
   chromium
 )
 

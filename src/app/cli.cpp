@@ -17,6 +17,7 @@
 #include "config/calibration.hpp"
 #include "config/load_params.hpp"
 #include "runner/live.hpp"
+#include "sim/physics/rover_urdf.hpp"
 
 namespace marsokhod::app {
 namespace {
@@ -97,6 +98,10 @@ struct Commands {
   CLI::App* calibrate_cmd = nullptr;
   CLI::App* soak_cmd = nullptr;
   CLI::App* replay_cmd = nullptr;
+  CLI::App* urdf_cmd = nullptr;
+  CLI::App* export_cmd = nullptr;
+  std::string export_dir;
+  bool export_force = false;
 };
 
 void add_console_options(CLI::App* cmd, runner::ConsoleArgs& c) {
@@ -119,6 +124,8 @@ void add_offline_commands(CLI::App& cli, Commands& c) {
   c.decode_cmd->add_option("FILE", decode.file, "candump log file, or - for standard input")
       ->required();
   c.decode_cmd->add_flag("--json", decode.json, "print one JSON object a line");
+  c.urdf_cmd = cli.add_subcommand(
+      "urdf", "print the rover as a URDF, generated from the configuration's geometry");
 
   ScenarioArgs& scenario = c.scenario;
   CLI::App* cmd = c.scenario_cmd = cli.add_subcommand(
@@ -127,7 +134,7 @@ void add_offline_commands(CLI::App& cli, Commands& c) {
   c.scenario_seed_option =
       cmd->add_option("--seed", c.scenario_seed, "the simulator's seed")->check(kSeed);
   cmd->add_option("--out", scenario.out,
-                  "write can.log, operator.jsonl, telemetry.csv and plots here");
+                  "write can.log, operator.jsonl, telemetry.csv, recording.mcap and plots here");
   cmd->add_flag("--json", scenario.json, "print one JSON object");
   cmd->add_flag("--list", scenario.list, "name the shipped scenarios");
   cmd->add_flag("--no-plots", scenario.no_plots, "skip the gnuplot PNGs");
@@ -143,6 +150,11 @@ void add_soak_and_replay(CLI::App& cli, Commands& c) {
   c.replay_cmd = cli.add_subcommand(
       "replay", "re-run the driver over a recording and compare every request, bit for bit");
   c.replay_cmd->add_option("DIR", c.replay_dir, "a scenario's --out folder")->required();
+  c.export_cmd = cli.add_subcommand(
+      "export-mcap", "write DIR/recording.mcap from a recording (the driver re-run over it)");
+  c.export_cmd->add_option("DIR", c.export_dir, "a recording: scenario --out, run/drive --record")
+      ->required();
+  c.export_cmd->add_flag("--force", c.export_force, "write over an existing recording.mcap");
 }
 
 void add_live_commands(CLI::App& cli, Commands& c) {
@@ -155,7 +167,8 @@ void add_live_commands(CLI::App& cli, Commands& c) {
   run_cmd->add_option("--seed", run.seed, "the simulator's seed")->check(kSeed);
   run_cmd->add_option("--duration", run.duration_s, "stop after this many seconds (default: on Ctrl-C)")
       ->check(CLI::NonNegativeNumber);
-  run_cmd->add_option("--record", run.record, "write can.log, operator.jsonl and telemetry.csv here");
+  run_cmd->add_option("--record", run.record,
+                      "write can.log, operator.jsonl, telemetry.csv and recording.mcap here");
   run_cmd->add_flag("--quiet", run.quiet, "no status line in the terminal");
 
   runner::SimArgs& sim = c.sim;
@@ -178,6 +191,8 @@ void add_live_commands(CLI::App& cli, Commands& c) {
   drive_cmd->add_option("--duration", drive.duration_s, "stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
   drive_cmd->add_flag("--quiet", drive.quiet, "no status line in the terminal");
+  drive_cmd->add_option("--record", drive.record,
+                        "write can.log, operator.jsonl, telemetry.csv and recording.mcap here");
   drive_cmd->add_option("--joint-memory", drive.joint_memory,
                         "keep the joints' state in FILE, so that a driver restarted after a "
                         "brown-out continues from it instead of taking the joints vertical");
@@ -267,6 +282,18 @@ int dispatch(Commands& c, const config::LoadedConfig& loaded, std::istream& in,
   if (c.scenario_cmd->parsed()) return run_scenario(c, loaded, out, err);
   if (c.soak_cmd->parsed()) return run_soak_command(c.soak, loaded, out, err);
   if (c.calibrate_cmd->parsed()) return run_calibrate_command(c.calibrate, loaded, in, out, err);
+  if (c.urdf_cmd->parsed()) {
+    try {
+      out << sim::rover_urdf(loaded.nominal);
+    } catch (const std::exception& e) {
+      err << "marsokhod urdf: " << e.what() << "\n";
+      return kUsageError;
+    }
+    return 0;
+  }
+  if (c.export_cmd->parsed()) {
+    return run_export_mcap_command(c.export_dir, c.export_force, params, out, err);
+  }
   if (c.replay_cmd->parsed()) return run_replay_command(c.replay_dir, params, out, err);
   if (c.run_cmd->parsed()) {
     c.run.console.web = find_web_dist(c.run.console.web);

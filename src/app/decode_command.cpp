@@ -9,37 +9,10 @@
 #include "bus/candump_log.hpp"
 #include "core/protocol/codec.hpp"
 #include "core/protocol/frame_description.hpp"
+#include "link/frame_json.hpp"
 
 namespace marsokhod::app {
 namespace {
-
-std::string unit_suffix(const std::string& unit) {
-  if (unit == "rad/s") return "_radps";
-  if (unit == "m/s^2") return "_mps2";
-  if (unit == "kHz") return "_khz";
-  if (unit == "V") return "_v";
-  if (unit.empty()) return "";
-  return "_" + unit;
-}
-
-nlohmann::ordered_json to_json(const bus::LoggedFrame& logged, const protocol::FrameDescription& d) {
-  nlohmann::ordered_json j;
-  j["time"] = logged.time_s;
-  j["timestamp"] = logged.timestamp;
-  j["interface"] = logged.interface;
-  j["id"] = logged.frame.id;
-  j["node"] = d.node;
-  j["type"] = d.type;
-  for (const protocol::RawField& f : d.raw) {
-    if (f.name == "lcd") {
-      j[f.name] = f.text;
-    } else {
-      j[f.name] = f.value;
-    }
-  }
-  for (const protocol::PhysicalField& f : d.physical) j[f.name + unit_suffix(f.unit)] = f.value;
-  return j;
-}
 
 std::string text_line(const bus::LoggedFrame& logged, const protocol::FrameDescription& d) {
   char id[8];
@@ -83,7 +56,7 @@ int decode_trace(std::istream& in, const std::string& source, const Params& para
     context.observe(result.message());
     const protocol::FrameDescription d = protocol::describe(result.message(), context);
     if (options.json) {
-      out << to_json(*logged, d).dump() << "\n";
+      out << link::frame_json(*logged, d).dump() << "\n";
     } else {
       out << text_line(*logged, d) << "\n";
     }

@@ -11,6 +11,7 @@
 
 #include "config/calibration.hpp"
 #include "config/load_params.hpp"
+#include "runner/export_mcap.hpp"
 #include "runner/replay.hpp"
 #include "runner/scenario_runner.hpp"
 #include "runner/sweep.hpp"
@@ -202,6 +203,60 @@ int run_scenario_command(const ScenarioArgs& args, const config::LoadedConfig& c
   return result.passed ? 0 : 1;
 }
 
+namespace {
+
+// The Params a recording's driver ran with: its config.toml (and calibration.toml on top), else
+// `params`; `nominal`: what its simulated rover was built from.
+Params recorded_params(const std::filesystem::path& folder, const Params& params, Params& nominal) {
+  std::error_code ec;
+  Params recorded = params;
+  nominal = params;
+  const auto config = folder / "config.toml";
+  const auto calibration = folder / "calibration.toml";
+  if (std::filesystem::is_regular_file(config, ec)) nominal = config::load_params(config);
+  if (std::filesystem::is_regular_file(calibration, ec)) {
+    recorded = config::load_params(config, calibration);
+  } else if (std::filesystem::is_regular_file(config, ec)) {
+    recorded = nominal;
+  }
+  return recorded;
+}
+
+}  // namespace
+
+int run_export_mcap_command(const std::string& folder, bool overwrite, const Params& params,
+                            std::ostream& out, std::ostream& err) {
+  try {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(folder, ec)) {
+      err << "marsokhod export-mcap: '" << folder << "' is not a folder with a recording\n";
+      return kUsageError;
+    }
+    if (!std::filesystem::is_regular_file(std::filesystem::path(folder) / "can.log", ec)) {
+      err << "marsokhod export-mcap: '" << folder
+          << "' has no can.log: not a recording (scenario --out, run --record, drive --record)\n";
+      return kUsageError;
+    }
+    Params nominal;
+    const Params recorded = recorded_params(folder, params, nominal);
+    auto start = runner::soak_window_driver(folder, recorded, nominal);
+    const runner::ExportResult r = runner::export_mcap(folder, recorded, std::move(start), overwrite);
+    out << "wrote " << (std::filesystem::path(folder) / "recording.mcap").string() << ": "
+        << r.cycles << " cycles, " << r.messages << " messages"
+        << (r.true_pose ? ", /tf from telemetry.csv" : ", no /tf (no true pose in telemetry.csv)")
+        << "\n";
+    if (!r.identical) {
+      out << "the replayed driver differs from the recording from " << r.first_difference
+          << " on: its /status, /imu, /joint_states and /pose are the replayed driver's\n";
+      return 1;
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    err << "marsokhod export-mcap: " << e.what() << "\n";
+    return kUsageError;
+  }
+}
+
 int run_replay_command(const std::string& folder, const Params& params, std::ostream& out,
                        std::ostream& err) {
   std::error_code ec;
@@ -210,16 +265,8 @@ int run_replay_command(const std::string& folder, const Params& params, std::ost
     return kUsageError;
   }
   try {
-    Params recorded = params;
-    Params nominal = params;  // what a soak's simulated rover was built from
-    const auto config = std::filesystem::path(folder) / "config.toml";
-    const auto calibration = std::filesystem::path(folder) / "calibration.toml";
-    if (std::filesystem::is_regular_file(config, ec)) nominal = config::load_params(config);
-    if (std::filesystem::is_regular_file(calibration, ec)) {
-      recorded = config::load_params(config, calibration);
-    } else if (std::filesystem::is_regular_file(config, ec)) {
-      recorded = nominal;
-    }
+    Params nominal;  // what a soak's simulated rover was built from
+    const Params recorded = recorded_params(folder, params, nominal);
     // A soak's window starts in the middle of a driver's life: the soak is run again to the
     // window's start for that driver (runner/soak.hpp).
     auto start = runner::soak_window_driver(folder, recorded, nominal);

@@ -40,6 +40,13 @@ std::vector<std::filesystem::path> scenario_folders();
 int run_scenario_command(const ScenarioArgs& args, const config::LoadedConfig& config, std::ostream& out,
                          std::ostream& err);
 
+// `export-mcap DIR`: DIR/recording.mcap from the recording in DIR (runner/export_mcap.hpp), with
+// its own config.toml as replay does. 0 when written; 1 when written but the replayed driver
+// differed from the recording (its status channels then are the replayed driver's); 2 when it
+// cannot be made (no can.log, an unreadable line, recording.mcap exists without `overwrite`).
+int run_export_mcap_command(const std::string& folder, bool overwrite, const Params& params,
+                            std::ostream& out, std::ostream& err);
+
 // 0 when the replay is identical to the recording, 1 when it differs, 2 when it cannot be read.
 // The recording's own config.toml (and calibration.toml on top) is used when it has one.
 int run_replay_command(const std::string& folder, const Params& params, std::ostream& out,

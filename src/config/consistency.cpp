@@ -125,6 +125,15 @@ std::vector<std::string> consistency_problems(const Params& p) {
     }
   }
   check_load_gains(p, out);
+  const auto& n = p.navigation;
+  if (!(n.min_speed_mps <= n.cruise_speed_mps)) {
+    out.push_back("navigation.min_speed_mps: " + show_number(n.min_speed_mps) +
+                  " must not exceed cruise_speed_mps (" + show_number(n.cruise_speed_mps) + ")");
+  }
+  if (!(n.min_spin_radps <= n.max_spin_radps)) {
+    out.push_back("navigation.min_spin_radps: " + show_number(n.min_spin_radps) +
+                  " must not exceed max_spin_radps (" + show_number(n.max_spin_radps) + ")");
+  }
   if (!has_curve(p)) {
     out.push_back("cycle.icr: " + std::to_string(p.cycle.icr) +
                   " has no [[motor_curve]] with that icr; add one (calibrate motor-curve)");

@@ -210,6 +210,25 @@ struct SafetyParams {
   double stuck_min_yaw_rate_radps = 0.1;     // a rover turning faster is not stuck
 };
 
+// Missions for application software (core/navigation/mission.hpp): how the driver turns,
+// moves and goes to waypoints by dead reckoning.
+struct NavigationParams {
+  double cruise_speed_mps = 0.15;          // v1_cruise·r: a move's speed between its ramps
+  double min_speed_mps = 0.03;             // v1_min·r: the slowest a leg creeps to its end
+  double max_spin_radps = 1.0;             // v2_max: m2's centre-wheel speed turning on the spot
+  double min_spin_radps = 0.3;             // v2_min
+  double heading_gain = 3.0;               // k_ψ: v2 [rad/s] per radian of heading error
+  double look_ahead_m = 0.5;               // L: the heading aims back at the line this far ahead
+  double heading_tolerance_rad = 0.0087;   // a turn ends within this (0.5°)
+  double position_tolerance_m = 0.02;      // a leg ends within this along the line
+  double turn_in_place_rad = 0.35;         // goto turns on the spot first beyond this (20°)
+  double settle_s = 1.5;                   // standing still this long ends a leg
+  double still_yaw_rate_radps = 0.03;      // still: |ω| and |speed|/r below this
+  double max_settle_s = 3.0;               // a leg's settling ends after this anyway
+  int max_corrections = 2;                 // legs driven again after ending off, per mission
+  double no_progress_s = 10.0;             // no progress this long aborts the mission
+};
+
 struct Params {
   GeometryParams geometry;
   CycleParams cycle;
@@ -243,6 +262,7 @@ struct Params {
   GaitParams gaits;
   BehaviourParams behaviours;
   SafetyParams safety;
+  NavigationParams navigation;
 };
 
 }  // namespace marsokhod

@@ -37,6 +37,7 @@ Driver::Driver(const Params& params, std::optional<JointMemory> kept)
                  params.safety.tip_over_time_constant_s}),
       stuck_({params.safety.stuck_time_s, params.safety.stuck_min_command_radps,
               params.safety.stuck_turning_share, params.safety.stuck_min_yaw_rate_radps}),
+      missions_(params),
       runtime_(runtime_settings_from(params)),
       kept_(std::move(kept)) {
   validate(runtime_);
@@ -262,6 +263,7 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   status_.operator_timeout = operator_.timed_out(time_s);
   status_.stop_latched = operator_.stop_latched();
   status_.stop_reason = operator_.stop_reason();
+  update_mission(time_s);
   status_.targets = {targets_.v1_radps, targets_.v2_radps, targets_.v4_radps, targets_.v6_radps,
                      targets_.v7_radps};
   update_faults(input);
@@ -307,8 +309,51 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   return requests_;
 }
 
+// A mission needs the driving mode, the operator's input in time and no stop; any non-neutral
+// input of the operator takes over. It drives through v1 and v2 (m1, m2) like the operator.
+void Driver::update_mission(double time_s) {
+  const auto why_not = [&]() -> std::optional<std::string> {
+    if (!status_.faults.empty()) return "fault: " + status_.faults.front();
+    if (operator_.timed_out(time_s)) {
+      return "the operator fell silent for " +
+             number_text(params_->safety.operator_timeout_s) + " s";
+    }
+    if (operator_.stop_latched()) return "stopped: " + operator_.stop_reason();
+    if (status_.mode == DriverMode::kStartup) return std::string("the driver is starting up");
+    if (status_.mode == DriverMode::kCalibration) return std::string("calibration mode");
+    return std::nullopt;
+  };
+  if (auto request = operator_.take_mission()) {
+    missions_.start(*request, status_.pose, time_s);  // checked by the operator channel
+  } else if (operator_.velocity_in_force(time_s)) {
+    if (auto reason = why_not()) {
+      missions_.abort(*reason, time_s);  // starts again when the velocity is heeded again
+    } else {
+      missions_.follow_velocity(time_s);
+    }
+  } else if (missions_.running() && missions_.status().kind == navigation::MissionKind::kVelocity) {
+    missions_.abort(why_not().value_or("the operator's input is no longer a velocity"), time_s);
+  }
+  if (missions_.driving_mission()) {
+    if (auto reason = why_not()) {
+      missions_.abort(*reason, time_s);
+    } else if (!is_neutral(targets_)) {
+      missions_.abort("the operator took over", time_s);
+    } else {
+      const navigation::DriveTargets t = missions_.update(status_.pose, time_s);
+      targets_.v1_radps = t.v1_radps;
+      targets_.v2_radps = t.v2_radps;
+    }
+  }
+  status_.mission = missions_.status();
+}
+
 // Dead reckoning (pose_estimator.hpp) from the centre wheels once their controllers answer.
+// The odometry frame starts where start-up ends: Procedure 4.3 swings the joints with the rover
+// standing, and until then the gyro has not seen the rover still long enough to learn its null
+// (3.4) — a unit's null 5 counts off the TYP line turns the heading by 0.04 rad in 2 s.
 void Driver::update_pose(double period_s) {
+  if (startup_.phase() != StartupPhase::kDone) return;
   if (!motors_.motor(kCenterLeft).started() || !motors_.motor(kCenterRight).started()) return;
   const MotorStatus& left = status_.motors[kCenterLeft];
   const MotorStatus& right = status_.motors[kCenterRight];

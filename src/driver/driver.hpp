@@ -35,6 +35,7 @@
 #include "driver/motion_controller.hpp"
 #include "driver/operator_channel.hpp"
 #include "driver/startup.hpp"
+#include "core/navigation/mission.hpp"
 #include "driver/status.hpp"
 
 namespace marsokhod::driver {
@@ -72,6 +73,7 @@ class Driver {
   void encode_requests();
   std::string lcd_text() const;
   void update_pose(double period_s);
+  void update_mission(double time_s);  // cmd_vel and missions (core/navigation/mission.hpp)
   void update_failsafes(double period_s);  // tip-over and stuck (core/estimation/failsafes.hpp)
   bool on_slope() const;  // the accelerometer off the vertical by more than the slant dead band
 
@@ -85,6 +87,7 @@ class Driver {
   estimation::PoseEstimator pose_;
   estimation::TipOverMonitor tip_over_;
   estimation::StuckMonitor stuck_;
+  navigation::MissionRunner missions_;
   std::uint64_t attitude_readings_ = 0;  // µ8's readings the tip-over monitor has seen
   RuntimeSettings runtime_;
   DriverStatus status_;

@@ -16,18 +16,52 @@ OperatorChannel::OperatorChannel(const Params& params) : params_(&params) {}
 
 std::optional<std::string> OperatorChannel::receive(const OperatorInput& input, double time_s) {
   mobility::OperatorTargets next = current_;
-  const bool carries_command = input.gamepad.has_value() || input.targets.has_value();
-  if (input.gamepad.has_value() && input.targets.has_value()) {
-    last_rejection_ = "an operator input carries either a gamepad reading or targets, not both";
+  const int commands = static_cast<int>(input.gamepad.has_value()) +
+                       static_cast<int>(input.targets.has_value()) +
+                       static_cast<int>(input.velocity.has_value()) +
+                       static_cast<int>(input.mission.has_value()) +
+                       static_cast<int>(input.heartbeat);
+  if (commands > 1) {
+    last_rejection_ =
+        "an operator input carries one of a gamepad reading, targets, a velocity, a mission or a "
+        "heartbeat, not several";
     return last_rejection_;
   }
   // clear_faults alone changes no target and does not count as the operator's command.
-  if (!carries_command && !input.stop) {
+  if (commands == 0 && !input.stop) {
     if (input.clear_faults) return std::nullopt;
-    last_rejection_ = "an operator input carries a gamepad reading, targets or a stop";
+    last_rejection_ =
+        "an operator input carries a gamepad reading, targets, a velocity, a mission, a heartbeat "
+        "or a stop";
     return last_rejection_;
   }
-  if (input.gamepad) {
+  // A velocity, a mission and a heartbeat leave the gait and calibration mode as they were.
+  mobility::OperatorTargets still;
+  still.gait = current_.gait;
+  still.calibration_mode = current_.calibration_mode;
+  still.memory = memory_;
+  if (input.velocity) {
+    if (auto e = navigation::check_velocity(*input.velocity, *params_)) {
+      last_rejection_ = e->message;
+      return last_rejection_;
+    }
+    const navigation::DriveTargets t = navigation::velocity_targets(*input.velocity, *params_);
+    next = still;
+    next.gait = mobility::Gait::kNone;  // cmd_vel drives on wheels
+    next.v1_radps = t.v1_radps;
+    next.v2_radps = t.v2_radps;
+  } else if (input.mission) {
+    if (auto e = navigation::check_request(*input.mission)) {
+      last_rejection_ = e->message;
+      return last_rejection_;
+    }
+    next = still;
+    next.gait = mobility::Gait::kNone;
+  } else if (input.heartbeat) {
+    // Carry on: a cmd_vel stays in force (a velocity mission is kept alive like the others);
+    // anything else becomes neutral.
+    next = velocity_ ? current_ : still;
+  } else if (input.gamepad) {
     try {
       next = mobility::map_gamepad(*input.gamepad, params_->operator_input, memory_);
     } catch (const std::invalid_argument& e) {
@@ -45,6 +79,11 @@ std::optional<std::string> OperatorChannel::receive(const OperatorInput& input, 
   memory_ = next.memory;
   current_ = next;
   last_valid_s_ = time_s;
+  if (input.velocity || input.gamepad || input.targets) velocity_ = input.velocity.has_value();
+  if (input.mission) {
+    mission_ = input.mission;
+    velocity_ = false;
+  }
   if (input.stop) {
     armed_ = false;
     stop_reason_ = input.stop_reason.empty() ? "stop" : input.stop_reason;

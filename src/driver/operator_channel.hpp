@@ -14,6 +14,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "core/mobility/gamepad.hpp"
 #include "core/params.hpp"
@@ -43,6 +44,12 @@ class OperatorChannel {
   // Why the latest stop happened; kept after re-arming (empty before any stop).
   const std::string& stop_reason() const { return stop_reason_; }
   const std::string& last_rejection() const { return last_rejection_; }
+  // The mission the latest input asked for, once: the driver starts it (core/navigation).
+  std::optional<navigation::MissionRequest> take_mission() { return std::exchange(mission_, {}); }
+  // The targets in force come from a cmd_vel (velocity input), armed and in time.
+  bool velocity_in_force(double time_s) const {
+    return velocity_ && armed_ && !timed_out(time_s);
+  }
 
  private:
   const Params* params_;
@@ -52,6 +59,8 @@ class OperatorChannel {
   bool armed_ = true;  // no stop yet: the first input drives (scenarios, replay)
   std::string stop_reason_;
   std::string last_rejection_;
+  std::optional<navigation::MissionRequest> mission_;
+  bool velocity_ = false;  // current_ is a cmd_vel's
 };
 
 }  // namespace marsokhod::driver

@@ -14,14 +14,19 @@
 
 #include "core/behaviour/switches.hpp"
 #include "core/mobility/gamepad.hpp"
+#include "core/navigation/mission.hpp"
 #include "core/params.hpp"
 
 namespace marsokhod::driver {
 
-// One operator message: a gamepad reading, or the targets of the mapping directly.
+// One operator message: a gamepad reading, the targets of the mapping directly, a cmd_vel, a
+// mission (turn, move, goto: core/navigation/mission.hpp) or a heartbeat — at most one of them.
 struct OperatorInput {
   std::optional<mobility::GamepadState> gamepad;
   std::optional<mobility::OperatorTargets> targets;  // memory is ignored
+  std::optional<navigation::VelocityCommand> velocity;  // a stream, like targets
+  std::optional<navigation::MissionRequest> mission;    // starts a mission (once per message)
+  bool heartbeat = false;     // keeps a running mission alive; neutral, moves nothing itself
   bool stop = false;          // all targets zero until a neutral input re-arms (operator_channel)
   bool clear_faults = false;  // acknowledge latched faults (silent controllers)
   std::string stop_reason;    // who stopped and why ("client 3 pressed STOP"); empty: "stop"

@@ -10,6 +10,7 @@
 #include "core/estimation/failsafes.hpp"
 #include "core/estimation/pose_estimator.hpp"
 #include "core/mobility/gait_table.hpp"
+#include "core/navigation/mission.hpp"
 #include "core/params.hpp"
 #include "driver/frame_intake.hpp"
 #include "driver/startup.hpp"
@@ -86,12 +87,14 @@ struct DriverStatus {
   BusCounters bus;
   std::string lcd;                  // the 8 characters sent to µ8
   // Dead reckoning from the gyro and the centre wheels (core/estimation/pose_estimator.hpp), in
-  // the odometry frame of this driver's start.
+  // the odometry frame of where this driver's start-up ended.
   estimation::Pose pose;
   // The failsafes of core/estimation/failsafes.hpp: the chassis' attitude from the mean gravity
   // (+ left side up, + nose down), and how long the wheels have been stalled.
   estimation::Attitude attitude;
   double stalled_s = 0.0;
+  // The operator's mission (core/navigation/mission.hpp): cmd_vel, turn, move, goto.
+  navigation::MissionStatus mission;
 };
 
 }  // namespace marsokhod::driver

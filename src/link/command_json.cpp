@@ -174,6 +174,128 @@ void write_targets(const mobility::OperatorTargets& t, TargetKeys keys, Json& ob
   if (t.rear_joint_target_rad) object["rear_joint_target"] = *t.rear_joint_target_rad;
 }
 
+std::vector<std::string_view> velocity_keys() { return {"v_mps", "yaw_radps"}; }
+
+navigation::VelocityCommand read_velocity(const Json& object, const Reading& how) {
+  navigation::VelocityCommand c;
+  const auto required = [&](const char* key, double& target) {
+    const std::string field = path(how, key);
+    const auto it = object.find(key);
+    if (it == object.end()) {
+      throw FieldError(field, field + ": missing; " + std::string(how.what) +
+                                  " carries v_mps (forward, m/s) and yaw_radps (counter-clockwise)");
+    }
+    target = read_number(*it, field);
+  };
+  required("v_mps", c.v_mps);
+  required("yaw_radps", c.yaw_radps);
+  if (how.ranges != nullptr) {
+    if (auto error = navigation::check_velocity(c, *how.ranges)) {
+      throw FieldError(path(how, error->field), std::string(how.prefix) + error->message);
+    }
+  }
+  return c;
+}
+
+void write_velocity(const navigation::VelocityCommand& c, Json& object) {
+  object["v_mps"] = c.v_mps;
+  object["yaw_radps"] = c.yaw_radps;
+}
+
+std::vector<std::string_view> mission_keys() {
+  return {"kind", "angle_rad", "distance_m", "waypoints"};
+}
+
+navigation::MissionRequest read_mission(const Json& object, const Reading& how) {
+  navigation::MissionRequest r;
+  const std::string kind_field = path(how, "kind");
+  const auto kind_it = object.find("kind");
+  if (kind_it == object.end()) {
+    throw FieldError(kind_field, kind_field + ": missing; a mission is \"turn\", \"move\" or \"goto\"");
+  }
+  const std::string& kind = read_string(*kind_it, kind_field);
+  const char* needed = nullptr;
+  if (kind == "turn") {
+    r.kind = navigation::MissionKind::kTurn;
+    needed = "angle_rad";
+  } else if (kind == "move") {
+    r.kind = navigation::MissionKind::kMove;
+    needed = "distance_m";
+  } else if (kind == "goto") {
+    r.kind = navigation::MissionKind::kGoto;
+    needed = "waypoints";
+  } else {
+    throw FieldError(kind_field, kind_field + ": unknown mission " + shown_value(*kind_it) +
+                                     "; expected \"turn\", \"move\" or \"goto\"");
+  }
+  for (const char* key : {"angle_rad", "distance_m", "waypoints"}) {
+    const bool present = object.contains(key);
+    const std::string field = path(how, key);
+    if (std::string_view(key) == needed && !present) {
+      throw FieldError(field, field + ": missing; a " + kind + " mission needs it");
+    }
+    if (std::string_view(key) != needed && present) {
+      throw FieldError(field, field + ": not a key of a " + kind + " mission (it takes " +
+                                  needed + ")");
+    }
+  }
+  if (r.kind == navigation::MissionKind::kTurn) {
+    r.angle_rad = read_number(object.at("angle_rad"), path(how, "angle_rad"));
+  } else if (r.kind == navigation::MissionKind::kMove) {
+    r.distance_m = read_number(object.at("distance_m"), path(how, "distance_m"));
+  } else {
+    const Json& list = object.at("waypoints");
+    const std::string field = path(how, "waypoints");
+    if (!list.is_array()) {
+      throw FieldError(field, field + ": expected an array of {\"x_m\":…,\"y_m\":…}, got " +
+                                  shown_value(list));
+    }
+    if (list.size() > navigation::kMaxWaypoints) {
+      throw FieldError(field, field + ": " + std::to_string(list.size()) +
+                                  " waypoints; at most " +
+                                  std::to_string(navigation::kMaxWaypoints));
+    }
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string at = field + "[" + std::to_string(i) + "]";
+      const Json& w = list[i];
+      if (!w.is_object()) {
+        throw FieldError(at, at + ": expected {\"x_m\":…,\"y_m\":…}, got " + shown_value(w));
+      }
+      reject_unknown_keys(w, at + ".", {"x_m", "y_m"}, "a waypoint");
+      for (const char* key : {"x_m", "y_m"}) {
+        if (!w.contains(key)) throw FieldError(at + "." + key, at + "." + key + ": missing");
+      }
+      r.waypoints.push_back({read_number(w.at("x_m"), at + ".x_m"),
+                             read_number(w.at("y_m"), at + ".y_m")});
+    }
+  }
+  if (auto error = navigation::check_request(r)) {
+    throw FieldError(path(how, error->field), std::string(how.prefix) + error->message);
+  }
+  return r;
+}
+
+void write_mission(const navigation::MissionRequest& r, Json& object) {
+  object["kind"] = navigation::mission_kind_id(r.kind);
+  switch (r.kind) {
+    case navigation::MissionKind::kTurn:
+      object["angle_rad"] = r.angle_rad;
+      break;
+    case navigation::MissionKind::kMove:
+      object["distance_m"] = r.distance_m;
+      break;
+    case navigation::MissionKind::kGoto: {
+      Json list = Json::array();
+      for (const navigation::Waypoint& w : r.waypoints) list.push_back({{"x_m", w.x_m}, {"y_m", w.y_m}});
+      object["waypoints"] = list;
+      break;
+    }
+    case navigation::MissionKind::kNone:
+    case navigation::MissionKind::kVelocity:
+      break;
+  }
+}
+
 std::vector<std::string_view> settings_keys() {
   return {"max_drop_v", "load_distribution", "behaviours", "speed_scale"};
 }
@@ -214,6 +336,9 @@ Json operator_input_json(const driver::OperatorInput& input) {
   Json j = Json::object();
   if (input.gamepad) write_gamepad(*input.gamepad, j["gamepad"]);
   if (input.targets) write_targets(*input.targets, TargetKeys::kRecording, j["targets"]);
+  if (input.velocity) write_velocity(*input.velocity, j["velocity"]);
+  if (input.mission) write_mission(*input.mission, j["mission"]);
+  if (input.heartbeat) j["heartbeat"] = true;
   if (input.stop) j["stop"] = true;
   if (!input.stop_reason.empty()) j["stop_reason"] = input.stop_reason;
   if (input.clear_faults) j["clear_faults"] = true;
@@ -222,7 +347,9 @@ Json operator_input_json(const driver::OperatorInput& input) {
 
 driver::OperatorInput operator_input_from_json(const Json& j) {
   if (!j.is_object()) throw FieldError("input", "input: expected an object, got " + shown_value(j));
-  reject_unknown_keys(j, "input.", {"gamepad", "targets", "stop", "stop_reason", "clear_faults"},
+  reject_unknown_keys(j, "input.",
+                      {"gamepad", "targets", "velocity", "mission", "heartbeat", "stop",
+                       "stop_reason", "clear_faults"},
                       "an operator input");
   driver::OperatorInput in;
   if_present(j, "gamepad", [&](const Json& g) {
@@ -235,6 +362,18 @@ driver::OperatorInput operator_input_from_json(const Json& j) {
     reject_unknown_keys(t, "targets.", target_keys(TargetKeys::kRecording), "targets");
     in.targets = read_targets(t, TargetKeys::kRecording, {"targets.", "targets", nullptr});
   });
+  if_present(j, "velocity", [&](const Json& v) {
+    if (!v.is_object()) throw FieldError("velocity", "velocity: expected an object");
+    reject_unknown_keys(v, "velocity.", velocity_keys(), "velocity");
+    in.velocity = read_velocity(v, {"velocity.", "velocity", nullptr});
+  });
+  if_present(j, "mission", [&](const Json& m) {
+    if (!m.is_object()) throw FieldError("mission", "mission: expected an object");
+    reject_unknown_keys(m, "mission.", mission_keys(), "mission");
+    in.mission = read_mission(m, {"mission.", "mission", nullptr});
+  });
+  if_present(j, "heartbeat",
+             [&](const Json& v) { in.heartbeat = read_bool(v, "input.heartbeat"); });
   if_present(j, "stop", [&](const Json& v) { in.stop = read_bool(v, "input.stop"); });
   if_present(j, "stop_reason",
              [&](const Json& v) { in.stop_reason = read_string(v, "input.stop_reason"); });

@@ -46,14 +46,27 @@ mobility::OperatorTargets read_targets(const nlohmann::json& object, TargetKeys 
 void write_targets(const mobility::OperatorTargets& targets, TargetKeys keys,
                    nlohmann::json& object);
 
+// cmd_vel: {"v_mps":…,"yaw_radps":…}, both required; with ranges, inside check_velocity's.
+std::vector<std::string_view> velocity_keys();
+navigation::VelocityCommand read_velocity(const nlohmann::json& object, const Reading& how);
+void write_velocity(const navigation::VelocityCommand& command, nlohmann::json& object);
+
+// A mission: {"kind":"turn","angle_rad":…} | {"kind":"move","distance_m":…} |
+// {"kind":"goto","waypoints":[{"x_m":…,"y_m":…},…]}; a key of another kind is an error. The
+// limits of check_request are checked always (they do not depend on the configuration).
+std::vector<std::string_view> mission_keys();
+navigation::MissionRequest read_mission(const nlohmann::json& object, const Reading& how);
+void write_mission(const navigation::MissionRequest& request, nlohmann::json& object);
+
 // {"max_drop_v":…,"load_distribution":"off"|"v"|"s","behaviours":{"power_management":…,
 // "slant_response":…,"contract_on_turn":…,"axle_placement":…},"speed_scale":…}: the keys given.
 std::vector<std::string_view> settings_keys();
 driver::SettingsChange read_settings_change(const nlohmann::json& object, const Reading& how);
 void write_settings_change(const driver::SettingsChange& change, nlohmann::json& object);
 
-// A recording's and a scenario's operator input: {"gamepad":{…},"targets":{…},"stop":true,
-// "stop_reason":"…","clear_faults":true}, each key only when set.
+// A recording's and a scenario's operator input: {"gamepad":{…},"targets":{…},"velocity":{…},
+// "mission":{…},"heartbeat":true,"stop":true,"stop_reason":"…","clear_faults":true}, each key
+// only when set.
 nlohmann::json operator_input_json(const driver::OperatorInput& input);
 driver::OperatorInput operator_input_from_json(const nlohmann::json& json);
 

@@ -14,6 +14,9 @@ CycleCommands merge_cycle_commands(const std::vector<InboundCommand>& commands,
     if (!next) continue;
     if (next->stop) next->stop_reason = command.reason;  // shown until the operator re-arms
     if (merged.input && merged.input->stop && !next->stop) continue;  // a stop holds its cycle
+    // A mission holds its cycle against a heartbeat (which adds nothing to it); any other
+    // later input replaces it as it would a cycle later.
+    if (merged.input && merged.input->mission && next->heartbeat) continue;
     merged.input = next;
   }
   return merged;

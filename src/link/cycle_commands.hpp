@@ -1,6 +1,6 @@
 // The console's commands of one control cycle (LinkServer::take_inbound), merged into what the
 // driver takes at that cycle: the newest operator input — but a stop wins its cycle, no later
-// input of the same cycle replaces it — with the stop's reason (shown until the operator
+// input of the same cycle replaces it, and a mission is not replaced by a heartbeat — with the stop's reason (shown until the operator
 // re-arms), and the run-time settings after every configure of the cycle, in order.
 #pragma once
 

@@ -14,7 +14,7 @@ using Json = nlohmann::json;
 // In the order of the OperatorMessage alternatives (message_type indexes it).
 constexpr std::array<std::string_view, std::variant_size_v<OperatorMessage>> kTypeNames = {
     "gamepad", "targets", "stop", "clear_faults", "take_control", "release_control", "configure",
-    "ping"};
+    "ping", "velocity", "mission", "heartbeat"};
 
 // 2^53 − 1: the largest integer a JavaScript number (the console's) holds exactly.
 constexpr double kMaxSeq = 9007199254740991.0;
@@ -64,6 +64,30 @@ TargetsMessage parse_targets(const Json& message, const Params& params) {
   return targets;
 }
 
+VelocityMessage parse_velocity(const Json& message, const Params& params) {
+  constexpr const char* kWhat = "a velocity message";
+  reject_unknown_keys(message, "", message_keys(true, velocity_keys()), kWhat);
+  VelocityMessage velocity;
+  velocity.stamp = read_stamp(message, kWhat);
+  velocity.command = read_velocity(message, {"", kWhat, &params});
+  return velocity;
+}
+
+MissionMessage parse_mission(const Json& message) {
+  constexpr const char* kWhat = "a mission message";
+  reject_unknown_keys(message, "", message_keys(true, mission_keys()), kWhat);
+  MissionMessage mission;
+  mission.stamp = read_stamp(message, kWhat);
+  mission.request = read_mission(message, {"", kWhat, nullptr});
+  return mission;
+}
+
+HeartbeatMessage parse_heartbeat(const Json& message) {
+  constexpr const char* kWhat = "a heartbeat message";
+  reject_unknown_keys(message, "", message_keys(true, {}), kWhat);
+  return {read_stamp(message, kWhat)};
+}
+
 ConfigureMessage parse_configure(const Json& message) {
   constexpr const char* kWhat = "a configure message";
   reject_unknown_keys(message, "", message_keys(false, settings_keys()), kWhat);
@@ -87,6 +111,9 @@ ParseResult parse_object(const Json& message, const Params& params) {
   if (type == "gamepad") return parse_gamepad(message, params);
   if (type == "targets") return parse_targets(message, params);
   if (type == "configure") return parse_configure(message);
+  if (type == "velocity") return parse_velocity(message, params);
+  if (type == "mission") return parse_mission(message);
+  if (type == "heartbeat") return parse_heartbeat(message);
   if (type == "stop") return parse_bare<StopMessage>(message, type);
   if (type == "clear_faults") return parse_bare<ClearFaultsMessage>(message, type);
   if (type == "take_control") return parse_bare<TakeControlMessage>(message, type);
@@ -143,6 +170,10 @@ Json operator_message_json(const OperatorMessage& message) {
     write_targets(targets->targets, TargetKeys::kConsole, out);
   } else if (const auto* configure = std::get_if<ConfigureMessage>(&message)) {
     write_settings_change(configure->change, out);
+  } else if (const auto* velocity = std::get_if<VelocityMessage>(&message)) {
+    write_velocity(velocity->command, out);
+  } else if (const auto* mission = std::get_if<MissionMessage>(&message)) {
+    write_mission(mission->request, out);
   }
   return out;
 }
@@ -153,6 +184,12 @@ std::optional<driver::OperatorInput> operator_input(const OperatorMessage& messa
     input.gamepad = gamepad->reading;
   } else if (const auto* targets = std::get_if<TargetsMessage>(&message)) {
     input.targets = targets->targets;
+  } else if (const auto* velocity = std::get_if<VelocityMessage>(&message)) {
+    input.velocity = velocity->command;
+  } else if (const auto* mission = std::get_if<MissionMessage>(&message)) {
+    input.mission = mission->request;
+  } else if (std::holds_alternative<HeartbeatMessage>(message)) {
+    input.heartbeat = true;
   } else if (std::holds_alternative<StopMessage>(message)) {
     input.stop = true;
   } else if (std::holds_alternative<ClearFaultsMessage>(message)) {
@@ -166,6 +203,9 @@ std::optional<driver::OperatorInput> operator_input(const OperatorMessage& messa
 std::optional<InputStamp> input_stamp(const OperatorMessage& message) {
   if (const auto* gamepad = std::get_if<GamepadMessage>(&message)) return gamepad->stamp;
   if (const auto* targets = std::get_if<TargetsMessage>(&message)) return targets->stamp;
+  if (const auto* velocity = std::get_if<VelocityMessage>(&message)) return velocity->stamp;
+  if (const auto* mission = std::get_if<MissionMessage>(&message)) return mission->stamp;
+  if (const auto* heartbeat = std::get_if<HeartbeatMessage>(&message)) return heartbeat->stamp;
   return std::nullopt;
 }
 

@@ -24,9 +24,9 @@
 
 namespace marsokhod::link {
 
-// Longer texts are rejected before parsing: the largest legal message (a gamepad reading with
-// every number written out in full) is well under 2 KiB.
-inline constexpr std::size_t kMaxOperatorMessageBytes = 4096;
+// Longer texts are rejected before parsing: the largest legal message (a goto of 64 waypoints
+// with every number written out in full, ≈ 64 × 50 bytes) is well under 8 KiB.
+inline constexpr std::size_t kMaxOperatorMessageBytes = 8192;
 
 // Every gamepad and targets message carries its place in the console's stream: `seq` counts up
 // from 1 on each connection and `sent_ms` is the console's clock when it sent it (any epoch,
@@ -54,6 +54,27 @@ struct TargetsMessage {
   InputStamp stamp;
   mobility::OperatorTargets targets;
   bool operator==(const TargetsMessage&) const = default;
+};
+
+// {"type":"velocity","seq":…,"sent_ms":…,"v_mps":…,"yaw_radps":…}: cmd_vel, a stream like
+// targets (core/navigation/mission.hpp maps it onto m1 and m2).
+struct VelocityMessage {
+  InputStamp stamp;
+  navigation::VelocityCommand command;
+  bool operator==(const VelocityMessage&) const = default;
+};
+
+// {"type":"mission","seq":…,"sent_ms":…,"kind":"turn"|"move"|"goto", …}: starts a mission.
+struct MissionMessage {
+  InputStamp stamp;
+  navigation::MissionRequest request;
+  bool operator==(const MissionMessage&) const = default;
+};
+
+// {"type":"heartbeat","seq":…,"sent_ms":…}: keeps a running mission alive.
+struct HeartbeatMessage {
+  InputStamp stamp;
+  bool operator==(const HeartbeatMessage&) const = default;
 };
 
 struct StopMessage {
@@ -88,11 +109,12 @@ struct MessageError {
 
 using OperatorMessage =
     std::variant<GamepadMessage, TargetsMessage, StopMessage, ClearFaultsMessage,
-                 TakeControlMessage, ReleaseControlMessage, ConfigureMessage, PingMessage>;
+                 TakeControlMessage, ReleaseControlMessage, ConfigureMessage, PingMessage,
+                 VelocityMessage, MissionMessage, HeartbeatMessage>;
 using ParseResult =
     std::variant<GamepadMessage, TargetsMessage, StopMessage, ClearFaultsMessage,
                  TakeControlMessage, ReleaseControlMessage, ConfigureMessage, PingMessage,
-                 MessageError>;
+                 VelocityMessage, MissionMessage, HeartbeatMessage, MessageError>;
 
 // Never throws. Ranges come from `params` (operator_input, motors.max_no_load_speed_radps).
 ParseResult parse_operator_message(std::string_view json, const Params& params);
@@ -107,12 +129,12 @@ std::string_view message_type(const OperatorMessage& message);
 // gives the message back (the round trip the tests and the fuzzer check).
 nlohmann::json operator_message_json(const OperatorMessage& message);
 
-// The stamp of a gamepad or targets message; nullopt for the others (they are never stale: a
+// The stamp of a gamepad, targets, velocity, mission or heartbeat message; nullopt for the others (they are never stale: a
 // late stop is still a stop).
 std::optional<InputStamp> input_stamp(const OperatorMessage& message);
 
-// What the driver takes from a message: gamepad, targets, stop and clear_faults become an
-// OperatorInput (for targets, the gamepad memory is the driver's); the others give nullopt.
+// What the driver takes from a message: gamepad, targets, velocity, mission, heartbeat, stop and
+// clear_faults become an OperatorInput (for targets, the gamepad memory is the driver's); the others give nullopt.
 std::optional<driver::OperatorInput> operator_input(const OperatorMessage& message);
 
 }  // namespace marsokhod::link

@@ -60,6 +60,24 @@ Json pose_json(const estimation::Pose& p) {
           {"heading_sigma_rad", p.heading_sigma_rad()}};
 }
 
+Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Json(); }
+
+Json mission_json(const navigation::MissionStatus& m) {
+  Json waypoints = Json::array();
+  for (const navigation::Waypoint& w : m.waypoints) waypoints.push_back({w.x_m, w.y_m});
+  return {{"id", m.id},
+          {"kind", navigation::mission_kind_id(m.kind)},
+          {"state", navigation::mission_state_id(m.state)},
+          {"reason", m.reason},
+          {"progress", m.progress},
+          {"leg", m.leg},
+          {"waypoints", waypoints},
+          {"target_heading_rad", optional_number(m.target_heading_rad)},
+          {"remaining_m", optional_number(m.remaining_m)},
+          {"remaining_rad", optional_number(m.remaining_rad)},
+          {"corrections", m.corrections}};
+}
+
 }  // namespace
 
 Json status_json(const driver::DriverStatus& s, const Json& truth) {
@@ -106,6 +124,7 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
       {"pose", pose_json(s.pose)},
       {"attitude", Json{{"roll_rad", s.attitude.roll_rad}, {"pitch_rad", s.attitude.pitch_rad}}},
       {"stalled_s", s.stalled_s},
+      {"mission", mission_json(s.mission)},
   };
   if (!truth.is_null()) out["truth"] = truth;
   return out;

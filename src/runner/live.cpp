@@ -113,8 +113,10 @@ class SimulatedBus final : public LiveBus {
 class TransportBus final : public LiveBus {
  public:
   TransportBus(const Params& params, bus::CanTransport& transport,
-               std::optional<driver::JointMemory> kept, JointMemoryFile* memory_file)
-      : driver_(params, std::move(kept)), transport_(&transport), memory_file_(memory_file) {}
+               std::optional<driver::JointMemory> kept, JointMemoryFile* memory_file,
+               Recorder* recorder)
+      : driver_(params, kept), transport_(&transport), memory_file_(memory_file),
+        recorder_(recorder), kept_(std::move(kept)) {}
   void wait_until(Pacer::Clock::time_point deadline) override {
     for (auto now = Pacer::Clock::now(); now < deadline; now = Pacer::Clock::now()) {
       const auto frames = transport_->receive(
@@ -126,8 +128,22 @@ class TransportBus final : public LiveBus {
   void set_runtime(const driver::RuntimeSettings& settings) override {
     driver_.set_runtime(settings);
   }
-  void step(double t_s, const driver::OperatorInput* input, bool /*settings_changed*/) override {
-    for (const auto& f : driver_.step(t_s, received_, input)) transport_->send(f);
+  void step(double t_s, const driver::OperatorInput* input, bool settings_changed) override {
+    // Whole microseconds, as a recording keeps them: its replay steps at the same times.
+    const std::int64_t t_us = std::llround(t_s * 1e6);
+    const auto& sent = driver_.step(static_cast<double>(t_us) * 1e-6, received_, input);
+    for (const auto& f : sent) transport_->send(f);
+    if (recorder_ != nullptr) {
+      CycleRecord cycle;
+      cycle.time_us = t_us;
+      for (const auto& f : received_) cycle.received.push_back({static_cast<double>(t_us) * 1e-6, f});
+      cycle.sent = sent;
+      cycle.input = input;
+      if (first_) cycle.kept_joints = kept_;
+      recorder_->record(cycle, settings_changed ? std::optional(driver_.runtime()) : std::nullopt,
+                        driver_.status());
+    }
+    first_ = false;
     received_.clear();
     if (memory_file_ == nullptr) return;
     try {
@@ -150,9 +166,24 @@ class TransportBus final : public LiveBus {
   driver::Driver driver_;
   bus::CanTransport* transport_;
   JointMemoryFile* memory_file_;
+  Recorder* recorder_;
+  std::optional<driver::JointMemory> kept_;
+  bool first_ = true;
   bool memory_error_ = false;
   std::vector<protocol::CanFrame> received_;
 };
+
+// recording.mcap's summary written: 0, or 1 with the reason on `err`.
+int finish_recording(Recorder* recorder, const char* command, std::ostream& err) {
+  if (recorder == nullptr) return 0;
+  try {
+    recorder->finish();
+  } catch (const std::exception& e) {
+    err << "marsokhod " << command << ": " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
 
 struct LoopOptions {
   const char* command;  // "run", "drive": for an error
@@ -197,7 +228,8 @@ int run_live(const RunArgs& args, const config::LoadedConfig& config, std::ostre
     console = std::make_unique<LiveConsole>(config, args.console, out);
     if (!args.record.empty()) {
       recorder = std::make_unique<Recorder>(args.record, config.config_file,
-                                            config.calibration_file);
+                                            config.calibration_file, &params,
+                                            "run --seed " + std::to_string(args.seed));
     }
   } catch (const std::exception& e) {
     err << "marsokhod run: " << e.what() << "\n";
@@ -208,7 +240,7 @@ int run_live(const RunArgs& args, const config::LoadedConfig& config, std::ostre
   run_cycles(bus, *console, std::chrono::microseconds(session->cycle_us()),
              {"run", args.duration_s, args.quiet}, out, err);
   out << "stopped after " << session->time_s() << " s\n";
-  return 0;
+  return finish_recording(recorder.get(), "run", err);
 }
 
 int run_drive(const DriveArgs& args, const config::LoadedConfig& config, std::ostream& out,
@@ -218,6 +250,7 @@ int run_drive(const DriveArgs& args, const config::LoadedConfig& config, std::os
   std::unique_ptr<LiveConsole> console;
   std::unique_ptr<JointMemoryFile> memory_file;
   std::optional<driver::JointMemory> kept;
+  std::unique_ptr<Recorder> recorder;
   std::string kept_note = "none kept (no --joint-memory): Procedure 4.3 takes the joints vertical";
   try {
     if (!args.joint_memory.empty()) {
@@ -229,21 +262,26 @@ int run_drive(const DriveArgs& args, const config::LoadedConfig& config, std::os
     }
     transport = bus::open_transport(args.can);
     console = std::make_unique<LiveConsole>(config, args.console, out);
+    if (!args.record.empty()) {
+      recorder = std::make_unique<Recorder>(args.record, config.config_file,
+                                            config.calibration_file, &params, "drive " + args.can);
+    }
   } catch (const std::exception& e) {
     err << "marsokhod drive: " << e.what() << "\n";
     return kUsageError;
   }
   out << "driving over " << transport->name() << "; " << config::describe_calibration(config.calibration)
       << "\njoint state: " << kept_note << "\n" << std::flush;
-  TransportBus bus(params, *transport, kept, memory_file.get());
+  TransportBus bus(params, *transport, kept, memory_file.get(), recorder.get());
   const auto period = std::chrono::microseconds(std::llround(params.cycle.period_s * 1e6));
   if (const int status = run_cycles(bus, *console, period, {"drive", args.duration_s, args.quiet},
                                     out, err);
       status != 0) {
+    finish_recording(recorder.get(), "drive", err);
     return status;
   }
   out << "stopped\n";
-  return 0;
+  return finish_recording(recorder.get(), "drive", err);
 }
 
 int run_sim(const SimArgs& args, const Params& params, std::ostream& out, std::ostream& err) {

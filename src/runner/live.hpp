@@ -44,6 +44,9 @@ struct DriveArgs {
   // The joint state kept across restarts (joint_memory_file.hpp); empty: none kept, a restart
   // runs Procedure 4.3 and takes the joints to be vertical.
   std::string joint_memory;
+  // A folder for can.log, operator.jsonl, telemetry.csv (no truth columns) and recording.mcap;
+  // the frames a cycle received are stamped with the cycle's time. Empty: none.
+  std::string record;
 };
 
 // The exit status: 0 when stopped (signal or duration), 1 when the bus failed, 2 when the

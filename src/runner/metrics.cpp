@@ -27,7 +27,8 @@ const std::vector<std::string>& run_metric_names() {
       "odometry_position_error_m", "odometry_position_error_share", "odometry_heading_error_rad",
       "odometry_position_sigma_m", "wheel_odometry_position_error_m",
       "wheel_odometry_heading_error_rad", "max_roll_rad", "max_pitch_rad", "tip_over_faults",
-      "stuck_faults", "first_tip_over_s", "first_stuck_s", "other_faults"};
+      "stuck_faults", "first_tip_over_s", "first_stuck_s", "other_faults", "missions_started",
+      "missions_reached", "missions_aborted", "mission_corrections", "final_mission_progress"};
   return names;
 }
 
@@ -185,6 +186,25 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   other_faults_ = std::max(other_faults_, static_cast<double>(s.faults.size()) - (tip_over ? 1.0 : 0.0) -
                                               (stuck ? 1.0 : 0.0));
   malformed_ = static_cast<double>(s.bus.malformed);
+  observe_missions(s.mission);
+}
+
+// Each mission counts once when it starts (a new id) and once when it ends (reached, aborted).
+void Metrics::observe_missions(const navigation::MissionStatus& m) {
+  if (m.id != last_mission_id_) {
+    last_mission_id_ = m.id;
+    last_mission_state_ = navigation::MissionState::kIdle;
+    if (m.id != 0) ++missions_started_;  // 0: a restarted driver, no mission yet
+  }
+  if (m.state != last_mission_state_) {
+    if (m.state == navigation::MissionState::kReached) {
+      ++missions_reached_;
+      mission_corrections_ += m.corrections;
+    }
+    if (m.state == navigation::MissionState::kAborted) ++missions_aborted_;
+    last_mission_state_ = m.state;
+  }
+  final_mission_progress_ = m.progress;
 }
 
 void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
@@ -223,7 +243,8 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
 
 void Metrics::observe_odometry(const Session& session) {
   const driver::DriverStatus& s = session.status();
-  if (s.cycle == 1 || !odometry_started_) {
+  // The driver's odometry frame starts where its start-up ends (driver.cpp, update_pose).
+  if (s.cycle == 1 || !odometry_started_ || s.startup_phase != driver::StartupPhase::kDone) {
     odometry_started_ = true;
     odometry_origin_path_m_ = path_length_m_;
     wheel_pose_ = {};
@@ -294,6 +315,11 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
   m["first_tip_over_s"] = first_tip_over_s_;
   m["first_stuck_s"] = first_stuck_s_;
   m["other_faults"] = other_faults_;
+  m["missions_started"] = missions_started_;
+  m["missions_reached"] = missions_reached_;
+  m["missions_aborted"] = missions_aborted_;
+  m["mission_corrections"] = mission_corrections_;
+  m["final_mission_progress"] = final_mission_progress_;
   m["malformed_frames"] = malformed_;
   m["brownouts"] = static_cast<double>(session.rover().electrics().brownout_count);
   m["driver_restarts"] = static_cast<double>(session.driver_restarts());

@@ -12,7 +12,7 @@
 // and, only when the operator fell silent or the driver halted: time_to_motors_off_s (from then
 // to the last cycle a duty cycle was applied by µ0–µ7) and time_to_standstill_s (to the last
 // cycle with a duty applied, the body moving faster than 0.01 m/s or turning faster than
-// 0.05 rad/s). The dead reckoning against the truth, from the last (re)start of the driver to
+// 0.05 rad/s). The dead reckoning against the truth, from the end of the driver's last start-up to
 // the end, the truth carried into the driver's odometry frame: odometry_position_error_m,
 // odometry_position_error_share (of the path length since then), odometry_heading_error_rad,
 // odometry_position_sigma_m (the estimate's own 1-σ), and the same errors of the plain wheel
@@ -22,7 +22,10 @@
 // |pitch| of the centre unit, ground truth, the whole run), tip_over_faults and stuck_faults (how
 // often the driver latched that fault), first_tip_over_s and first_stuck_s (when it first did;
 // −1: never), other_faults (like driver_faults, the most faults latched at once, not counting
-// these two).
+// these two). The operator's missions (core/navigation/mission.hpp): missions_started,
+// missions_reached, missions_aborted (each mission once; a driver restart starts counting its
+// missions again from its own ids), mission_corrections (legs driven again, over the reached
+// missions), final_mission_progress (the last mission's progress at the end, 0..1).
 //
 // For each [[phase]] (phase_metric_names()), named "PHASE.metric": duration_s, distance_m,
 // forward_distance_m, path_length_m, mean_speed_mps (path length / duration), yaw_change_rad,
@@ -120,6 +123,12 @@ class Metrics {
   double first_tip_over_s_ = -1.0, first_stuck_s_ = -1.0;
   double other_faults_ = 0.0;
   bool tip_over_latched_ = false, stuck_latched_ = false;
+  // Missions (core/navigation): counted as the driver's status shows them.
+  std::uint64_t last_mission_id_ = 0;
+  navigation::MissionState last_mission_state_ = navigation::MissionState::kIdle;
+  double missions_started_ = 0.0, missions_reached_ = 0.0, missions_aborted_ = 0.0;
+  double mission_corrections_ = 0.0, final_mission_progress_ = 0.0;
+  void observe_missions(const navigation::MissionStatus& mission);
   // Odometry: the truth in the frame of the driver's last (re)start, and the wheel odometry since.
   estimation::OdometryFrameTracker truth_odometry_;
   bool odometry_started_ = false;

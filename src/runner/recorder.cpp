@@ -5,6 +5,7 @@
 
 #include "bus/candump_log.hpp"
 #include "link/command_json.hpp"
+#include "link/status_json.hpp"
 #include "runner/joint_memory_file.hpp"
 #include "runner/telemetry.hpp"
 
@@ -44,7 +45,8 @@ std::int64_t parse_time_us(const std::string& text) {
 }
 
 Recorder::Recorder(const std::filesystem::path& folder, const std::filesystem::path& config_file,
-                   const std::filesystem::path& calibration_file) {
+                   const std::filesystem::path& calibration_file, const Params* mcap_params,
+                   const std::string& source) {
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   if (ec) throw std::runtime_error("cannot create " + folder.string() + ": " + ec.message());
@@ -64,11 +66,32 @@ Recorder::Recorder(const std::filesystem::path& folder, const std::filesystem::p
       throw std::runtime_error("cannot copy " + calibration_file.string() + ": " + ec.message());
     }
   }
+  if (mcap_params != nullptr) {
+    mcap_ = std::make_unique<McapRecording>(folder / "recording.mcap", *mcap_params, source,
+                                            read_text_file(config_file),
+                                            read_text_file(calibration_file));
+  }
 }
 
 void Recorder::record(const CycleRecord& cycle,
                       const std::optional<driver::RuntimeSettings>& runtime,
                       const driver::DriverStatus& status, const sim::SimulatedRover& rover) {
+  record(cycle, runtime, status, &rover);
+}
+
+void Recorder::record(const CycleRecord& cycle,
+                      const std::optional<driver::RuntimeSettings>& runtime,
+                      const driver::DriverStatus& status) {
+  record(cycle, runtime, status, nullptr);
+}
+
+void Recorder::finish() {
+  if (mcap_) mcap_->finish();
+}
+
+void Recorder::record(const CycleRecord& cycle,
+                      const std::optional<driver::RuntimeSettings>& runtime,
+                      const driver::DriverStatus& status, const sim::SimulatedRover* rover) {
   for (const sim::TimedFrame& f : cycle.received) {
     log_frame(can_, std::llround(f.time_s * 1e6), f.frame);
   }
@@ -84,6 +107,22 @@ void Recorder::record(const CycleRecord& cycle,
   telemetry_ << telemetry_row(static_cast<double>(cycle.time_us) * 1e-6, cycle.driver_running,
                               status, rover)
              << '\n';
+  if (!mcap_) return;
+  McapCycle m;
+  m.time_us = cycle.time_us;
+  for (const sim::TimedFrame& f : cycle.received) {
+    m.received.emplace_back(std::llround(f.time_s * 1e6), f.frame);
+  }
+  m.sent = cycle.sent;
+  m.input = cycle.input;
+  m.runtime = runtime;
+  m.status = cycle.driver_running ? &status : nullptr;
+  if (rover != nullptr) {
+    m.truth = link::truth_json(*rover);
+    const sim::GroundTruth t = rover->truth();
+    m.true_pose = TruePose{t.position_m, t.roll_pitch_yaw_rad};
+  }
+  mcap_->record(m);
 }
 
 }  // namespace marsokhod::runner

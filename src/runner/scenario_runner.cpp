@@ -89,10 +89,16 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   if (scenario.state_of_charge) session.rover().set_state_of_charge(*scenario.state_of_charge);
   session.set_runtime(link::runtime_settings_from_json(scenario.runtime, session.runtime()));
   std::unique_ptr<Recorder> recorder;
-  if (options.out) recorder = std::make_unique<Recorder>(*options.out, options.config_file, options.calibration_file);
+  if (options.out) {
+    recorder = std::make_unique<Recorder>(
+        *options.out, options.config_file, options.calibration_file, &params,
+        "scenario " + scenario.name + " --seed " + std::to_string(result.seed));
+  }
   Metrics metrics(params, scenario.phases);
   std::size_t next_fault = 0, next_runtime = 0;
   const InputEvent* previous = nullptr;
+  driver::OperatorInput heartbeat;
+  heartbeat.heartbeat = true;
   bool runtime_changed = true;
   const auto wall_start = std::chrono::steady_clock::now();
   while (session.time_s() < scenario.duration_s - 1e-9) {
@@ -109,9 +115,13 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
       runtime_changed = true;
     }
     const InputEvent* event = current_input(scenario, now);
-    if (event != previous && event != nullptr) note_new_input(*event, now, metrics);
+    const bool repeated = event == previous;
+    if (!repeated && event != nullptr) note_new_input(*event, now, metrics);
     previous = event;
     const driver::OperatorInput* input = event && event->input ? &*event->input : nullptr;
+    // The operator's input goes again every cycle until the next [[input]]; a mission is asked
+    // for once and then kept alive by heartbeats, as the console does.
+    if (input != nullptr && input->mission && repeated) input = &heartbeat;
     const CycleRecord& cycle = session.step(input);
     metrics.observe(session, cycle);
     if (recorder) {
@@ -128,6 +138,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   result.passed = true;
   for (const Check& c : scenario.checks) result.checks.push_back(evaluate(c, result.metrics));
   for (const CheckResult& c : result.checks) result.passed = result.passed && c.passed;
+  if (recorder) recorder->finish();
   recorder.reset();  // flush before plotting
   if (options.out && options.plots) {
     if (auto note = make_plots(*options.out)) result.notes.push_back(*note);

@@ -38,7 +38,7 @@ std::string telemetry_header() {
 }
 
 std::string telemetry_row(double time_s, bool running, const driver::DriverStatus& s,
-                          const sim::SimulatedRover& rover) {
+                          const sim::SimulatedRover* rover) {
   std::string row;
   add(row, time_s);
   for (double v : {running ? 1.0 : 0.0, static_cast<double>(s.mode),
@@ -63,16 +63,20 @@ std::string telemetry_row(double time_s, bool running, const driver::DriverStatu
       add(row, v);
     }
   }
-  const sim::GroundTruth t = rover.truth();
-  const auto& e = rover.electrics();
-  for (double v : {t.position_m[0], t.position_m[1], t.position_m[2], t.roll_pitch_yaw_rad[0],
-                   t.roll_pitch_yaw_rad[1], t.roll_pitch_yaw_rad[2],
-                   std::hypot(t.velocity_mps[0], t.velocity_mps[1]), t.yaw_rate_radps,
-                   t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint], e.supply_v,
-                   e.total_current_a, e.computer_on ? 1.0 : 0.0, rover.energy_used_j()}) {
-    add(row, v);
+  if (rover == nullptr) {
+    row.append(14 + kWheelCount, ',');  // the truth's columns, empty
+  } else {
+    const sim::GroundTruth t = rover->truth();
+    const auto& e = rover->electrics();
+    for (double v : {t.position_m[0], t.position_m[1], t.position_m[2], t.roll_pitch_yaw_rad[0],
+                     t.roll_pitch_yaw_rad[1], t.roll_pitch_yaw_rad[2],
+                     std::hypot(t.velocity_mps[0], t.velocity_mps[1]), t.yaw_rate_radps,
+                     t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint], e.supply_v,
+                     e.total_current_a, e.computer_on ? 1.0 : 0.0, rover->energy_used_j()}) {
+      add(row, v);
+    }
+    for (double slip : t.wheel_slip_mps) add(row, slip);
   }
-  for (double slip : t.wheel_slip_mps) add(row, slip);
   const estimation::Pose& p = s.pose;
   for (double v : {p.x_m, p.y_m, p.heading_rad, p.speed_mps, p.distance_m, p.position_sigma_m(),
                    p.heading_sigma_rad(), s.attitude.roll_rad, s.attitude.pitch_rad, s.stalled_s}) {

@@ -11,6 +11,6 @@ namespace marsokhod::runner {
 
 std::string telemetry_header();
 std::string telemetry_row(double time_s, bool driver_running, const driver::DriverStatus& status,
-                          const sim::SimulatedRover& rover);
+                          const sim::SimulatedRover* rover);  // nullptr: no truth (empty)
 
 }  // namespace marsokhod::runner

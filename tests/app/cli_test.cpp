@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <map>
 #include <mutex>
 #include <thread>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "../runner/mcap_test_reader.hpp"
 #include "bus/socketcand_server.hpp"
 #include "config/load_params.hpp"
 #include "runner/sweep.hpp"
@@ -298,6 +300,62 @@ TEST_F(CliCalibrate, OnABusTheOperatorIsGuidedAndAPoorFitIsRefused) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("given up by the operator"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(file));
+}
+
+std::vector<std::string> lines_in(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// `drive --record`: the driver on a bus writes a recording that replays bit for bit, with its
+// recording.mcap (no truth: no /tf, telemetry.csv's truth columns empty); export-mcap refuses
+// to write over it, and a folder without can.log.
+TEST(CliDrive, ARecordingOfDriveReplaysAndHasItsMcap) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("marsokhod-drive-record-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  {
+    const ServedRover rover;
+    const std::string url = rover.url();
+    const Result r = cli({"--config", kConfig.c_str(), "drive", "--can", url.c_str(),
+                          "--no-console", "--quiet", "--duration", "1.5", "--record", dir.c_str()});
+    ASSERT_EQ(r.status, 0) << r.out << r.err;
+  }
+  Result r = cli({"--config", kConfig.c_str(), "replay", dir.c_str()});
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("identical to the recording, bit for bit"), std::string::npos) << r.out;
+
+  std::ifstream in(dir / "recording.mcap", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const runner::test::McapFile f = runner::test::read_mcap(bytes);
+  std::map<std::string, std::size_t> counts;
+  for (const auto& m : f.messages) ++counts[f.channels.at(m.channel).at("topic")];
+  const auto cycles = lines_in(dir / "operator.jsonl").size();
+  EXPECT_GT(cycles, 90u);
+  EXPECT_EQ(counts["/status"], cycles);
+  EXPECT_EQ(counts["/joint_states"], cycles);
+  EXPECT_EQ(counts["/can/raw"], lines_in(dir / "can.log").size());
+  EXPECT_EQ(counts.count("/tf"), 0u);
+  const auto telemetry = lines_in(dir / "telemetry.csv");
+  ASSERT_EQ(telemetry.size(), cycles + 1);
+  EXPECT_NE(telemetry[1].find(",,,,,"), std::string::npos) << telemetry[1];
+
+  r = cli({"--config", kConfig.c_str(), "export-mcap", dir.c_str()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("recording.mcap exists (--force writes over it)"), std::string::npos) << r.err;
+  r = cli({"--config", kConfig.c_str(), "export-mcap", "--force", dir.c_str()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find(std::to_string(cycles) + " cycles"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no /tf"), std::string::npos) << r.out;
+  std::filesystem::remove(dir / "can.log");
+  r = cli({"--config", kConfig.c_str(), "export-mcap", dir.c_str()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.err, "marsokhod export-mcap: '" + dir.string() +
+                       "' has no can.log: not a recording (scenario --out, run --record, drive "
+                       "--record)\n");
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -139,3 +139,65 @@ TEST(OperatorChannel, IsNeutral) {
 
 }  // namespace
 }  // namespace marsokhod::driver
+
+namespace marsokhod::driver {
+namespace {
+
+// Issue #15: cmd_vel is a stream of targets; a mission is handed to the driver once; a heartbeat
+// keeps what is in force alive and moves nothing itself.
+TEST(OperatorChannel, VelocityBecomesV1AndV2AndObeysTheStopLatch) {
+  const Params params;
+  OperatorChannel channel(params);
+  OperatorInput v;
+  v.velocity = navigation::VelocityCommand{0.1, 0.2};
+  ASSERT_FALSE(channel.receive(v, 1.0));
+  EXPECT_NEAR(channel.targets(1.0).v1_radps, 0.8, 1e-12);   // 0.1/0.125
+  EXPECT_NEAR(channel.targets(1.0).v2_radps, 0.56, 1e-12);  // 0.2·0.35/0.125
+  EXPECT_TRUE(channel.velocity_in_force(1.0));
+  OperatorInput beat;
+  beat.heartbeat = true;
+  ASSERT_FALSE(channel.receive(beat, 1.4));
+  EXPECT_NEAR(channel.targets(1.8).v1_radps, 0.8, 1e-12);  // kept alive by the heartbeat
+  EXPECT_FALSE(channel.velocity_in_force(1.9001));          // 0.5 s after the heartbeat
+  OperatorInput stop;
+  stop.stop = true;
+  ASSERT_FALSE(channel.receive(stop, 2.0));
+  ASSERT_FALSE(channel.receive(v, 2.1));  // still pushing: no re-arm
+  EXPECT_EQ(channel.targets(2.1).v1_radps, 0.0);
+  EXPECT_FALSE(channel.velocity_in_force(2.1));
+  OperatorInput zero;
+  zero.velocity = navigation::VelocityCommand{0.0, 0.0};
+  ASSERT_FALSE(channel.receive(zero, 2.2));  // neutral: re-armed
+  ASSERT_FALSE(channel.receive(v, 2.3));
+  EXPECT_NEAR(channel.targets(2.3).v1_radps, 0.8, 1e-12);
+  OperatorInput fast;
+  fast.velocity = navigation::VelocityCommand{1.0, 0.0};
+  EXPECT_TRUE(channel.receive(fast, 2.4));  // beyond 0.281 m/s: rejected, the last one stands
+  EXPECT_NEAR(channel.targets(2.4).v1_radps, 0.8, 1e-12);
+}
+
+TEST(OperatorChannel, AMissionIsTakenOnceAndIsNeutral) {
+  const Params params;
+  OperatorChannel channel(params);
+  ASSERT_FALSE(channel.receive(targets(1.0), 0.0));
+  OperatorInput m;
+  m.mission = navigation::MissionRequest{navigation::MissionKind::kMove, 0.0, 2.0, {}};
+  ASSERT_FALSE(channel.receive(m, 0.1));
+  EXPECT_TRUE(is_neutral(channel.targets(0.1)));
+  const auto taken = channel.take_mission();
+  ASSERT_TRUE(taken);
+  EXPECT_EQ(taken->distance_m, 2.0);
+  EXPECT_FALSE(channel.take_mission());
+  OperatorInput both = m;
+  both.heartbeat = true;
+  EXPECT_TRUE(channel.receive(both, 0.2));  // one command per input
+  OperatorInput bad;
+  bad.mission = navigation::MissionRequest{navigation::MissionKind::kTurn, 100.0, 0.0, {}};
+  const auto why = channel.receive(bad, 0.3);
+  ASSERT_TRUE(why);
+  EXPECT_NE(why->find("angle_rad"), std::string::npos);
+  EXPECT_FALSE(channel.take_mission());
+}
+
+}  // namespace
+}  // namespace marsokhod::driver

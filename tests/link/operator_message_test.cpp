@@ -269,7 +269,7 @@ TEST(OperatorMessage, RejectsOversizedText) {
   const std::string text = R"({"type":"ping"})" + std::string(kMaxOperatorMessageBytes, ' ');
   const MessageError error = error_of(text);
   EXPECT_EQ(error.field, "json");
-  EXPECT_NE(error.message.find("at most 4096"), std::string::npos);
+  EXPECT_NE(error.message.find("at most 8192"), std::string::npos);
 }
 
 TEST(OperatorMessage, MapsToTheDriversInput) {
@@ -290,6 +290,53 @@ TEST(OperatorMessage, MapsToTheDriversInput) {
   EXPECT_TRUE(operator_input(ClearFaultsMessage{})->clear_faults);
   EXPECT_FALSE(operator_input(PingMessage{}).has_value());
   EXPECT_FALSE(operator_input(ConfigureMessage{}).has_value());
+}
+
+}  // namespace
+}  // namespace marsokhod::link
+
+namespace marsokhod::link {
+namespace {
+
+// Issue #15's commands: cmd_vel, the missions and the heartbeat.
+TEST(OperatorMessage, RoundTripsTheMissionsAndVelocity) {
+  expect_round_trip(VelocityMessage{{3, 1.0}, {0.2, -0.5}});
+  expect_round_trip(MissionMessage{{4, 2.0}, {navigation::MissionKind::kTurn, 1.5, 0.0, {}}});
+  expect_round_trip(MissionMessage{{5, 3.0}, {navigation::MissionKind::kMove, 0.0, -2.0, {}}});
+  expect_round_trip(MissionMessage{
+      {6, 4.0}, {navigation::MissionKind::kGoto, 0.0, 0.0, {{2.0, 0.0}, {2.0, 2.0}, {-1.5, 0.25}}}});
+  expect_round_trip(HeartbeatMessage{{7, 5.0}});
+  const auto goto_message = message_from(
+      R"({"type":"mission","seq":1,"sent_ms":0,"kind":"goto","waypoints":[{"x_m":2,"y_m":0},{"x_m":2,"y_m":2}]})");
+  const auto input = operator_input(goto_message);
+  ASSERT_TRUE(input && input->mission);
+  ASSERT_EQ(input->mission->waypoints.size(), 2U);
+  EXPECT_EQ(input->mission->waypoints[1].y_m, 2.0);
+  EXPECT_TRUE(operator_input(HeartbeatMessage{})->heartbeat);
+  EXPECT_EQ(operator_input(VelocityMessage{{1, 0}, {0.1, 0.2}})->velocity->yaw_radps, 0.2);
+}
+
+TEST(OperatorMessage, RejectsBadMissionsAndVelocitiesNamingTheField) {
+  EXPECT_EQ(error_of(R"({"type":"velocity","seq":1,"sent_ms":0,"v_mps":0.5,"yaw_radps":0})").field,
+            "v_mps");  // beyond r·v1ᵈ = 0.281 m/s
+  EXPECT_EQ(error_of(R"({"type":"velocity","seq":1,"sent_ms":0,"v_mps":0.1})").field, "yaw_radps");
+  EXPECT_EQ(error_of(R"({"type":"mission","seq":1,"sent_ms":0,"kind":"fly"})").field, "kind");
+  EXPECT_EQ(error_of(R"({"type":"mission","seq":1,"sent_ms":0,"kind":"turn"})").field, "angle_rad");
+  EXPECT_EQ(
+      error_of(R"({"type":"mission","seq":1,"sent_ms":0,"kind":"turn","angle_rad":1,"distance_m":2})")
+          .field,
+      "distance_m");
+  EXPECT_EQ(error_of(R"({"type":"mission","seq":1,"sent_ms":0,"kind":"goto","waypoints":[]})").field,
+            "waypoints");
+  EXPECT_EQ(
+      error_of(R"({"type":"mission","seq":1,"sent_ms":0,"kind":"goto","waypoints":[{"x_m":1}]})")
+          .field,
+      "waypoints[0].y_m");
+  EXPECT_EQ(error_of(R"({"type":"mission","seq":1,"sent_ms":0,"kind":"move","distance_m":1000})")
+                .field,
+            "distance_m");
+  EXPECT_EQ(error_of(R"({"type":"heartbeat","seq":1,"sent_ms":0,"v1":0})").field, "v1");
+  EXPECT_EQ(error_of(R"({"type":"heartbeat"})").field, "seq");
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // from the gyro and the centre axle's wheels, with its uncertainty (an extended Kalman filter's
 // prediction step; there is no absolute measurement to correct it with).
 //
-// The frame: x forward and y to the left of the rover where the driver started (or was reset),
+// The frame: x forward and y to the left of the rover where the driver's start-up ended (or reset),
 // ψ counter-clockwise seen from above, the same sense as the yaw rate of µ8's gyro. The point
 // tracked is the middle of the centre axle: it is the chassis segment both joints hang from, and
 // its two wheels are the only ones whose rolling is the chassis' motion in every elementary

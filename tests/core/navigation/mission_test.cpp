@@ -1,0 +1,217 @@
+#include "core/navigation/mission.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace marsokhod::navigation {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kH = 0.0156;  // the driver's cycle
+
+// A skid-steered unicycle behind the ramp (4.14) of the driver: v1 and v2 approach their targets
+// at μ rad/s², the body moves at r·v1 and turns at η·v2·r/(t/2) — η the share skidding leaves of
+// the rolling turn (spin-efficiency: about a half on hard ground).
+struct Plant {
+  Plant(const Params& p, double eta = 0.5) : params(p), efficiency(eta) {}
+  const Params& params;
+  double efficiency;
+  double v1 = 0.0, v2 = 0.0;
+  estimation::Pose pose;
+
+  void step(const DriveTargets& t) {
+    const double mu = params.operator_input.drive_rate_per_s * kH;
+    v1 += std::clamp(t.v1_radps - v1, -mu, mu);
+    v2 += std::clamp(t.v2_radps - v2, -mu, mu);
+    const double r = params.geometry.wheel_radius_m;
+    const double speed = r * v1;
+    const double yaw_rate = efficiency * v2 * r / (0.5 * params.geometry.track_width_m);
+    pose.x_m += speed * std::cos(pose.heading_rad) * kH;
+    pose.y_m += speed * std::sin(pose.heading_rad) * kH;
+    pose.heading_rad += yaw_rate * kH;
+    pose.speed_mps = speed;
+    pose.yaw_rate_radps = yaw_rate;
+  }
+};
+
+// Runs the mission until it ends or `limit_s` passes; returns the time it took.
+double run(MissionRunner& runner, Plant& plant, double limit_s) {
+  double t = 0.0;
+  while (runner.running() && t < limit_s) {
+    t += kH;
+    plant.step(runner.update(plant.pose, t));
+  }
+  return t;
+}
+
+TEST(VelocityTargets, CmdVelMapsOntoM1AndM2WithTheGeometry) {
+  const Params params;
+  // 0.1 m/s on r = 0.125 m is v1 = 0.8 rad/s; 0.2 rad/s with the centre wheels 0.35 m off the
+  // middle is v2 = 0.2·0.35/0.125 = 0.56 rad/s.
+  const DriveTargets t = velocity_targets({0.1, 0.2}, params);
+  EXPECT_NEAR(t.v1_radps, 0.8, 1e-12);
+  EXPECT_NEAR(t.v2_radps, 0.56, 1e-12);
+  // The limits are the operator's: r·v1ᵈ = 0.281 m/s, r·v2ᵈ/(t/2) = 0.536 rad/s.
+  EXPECT_NEAR(max_velocity_mps(params), 0.125 * 2.25, 1e-12);
+  EXPECT_NEAR(max_yaw_rate_radps(params), 0.125 * 1.5 / 0.35, 1e-12);
+  EXPECT_FALSE(check_velocity({0.28, -0.5}, params));
+  const auto e = check_velocity({0.3, 0.0}, params);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->field, "v_mps");
+  EXPECT_NE(e->message.find("out of range"), std::string::npos);
+  EXPECT_TRUE(check_velocity({0.0, std::nan("")}, params));
+}
+
+TEST(MissionRequest, BadRequestsNameTheirField) {
+  MissionRequest turn{MissionKind::kTurn, 20.0, 0.0, {}};
+  ASSERT_TRUE(check_request(turn));
+  EXPECT_EQ(check_request(turn)->field, "angle_rad");
+  MissionRequest move{MissionKind::kMove, 0.0, std::nan(""), {}};
+  EXPECT_EQ(check_request(move)->field, "distance_m");
+  MissionRequest empty{MissionKind::kGoto, 0.0, 0.0, {}};
+  EXPECT_EQ(check_request(empty)->field, "waypoints");
+  MissionRequest far{MissionKind::kGoto, 0.0, 0.0, {{1.0, 2.0}, {1e4, 0.0}}};
+  EXPECT_EQ(check_request(far)->field, "waypoints[1].x_m");
+  MissionRequest ok{MissionKind::kGoto, 0.0, 0.0, {{1.0, 2.0}}};
+  EXPECT_FALSE(check_request(ok));
+  MissionRunner runner{Params{}};
+  EXPECT_THROW(runner.start(far, {}, 0.0), std::invalid_argument);
+  EXPECT_FALSE(runner.running());
+}
+
+TEST(MissionRunner, TurnReachesItsHeadingWithinTheTolerance) {
+  const Params params;
+  for (const double efficiency : {0.3, 0.5, 0.9}) {  // a slower and a faster turning ground
+    for (const double angle : {kPi / 2, -kPi / 4, 2 * kPi}) {
+      MissionRunner runner(params);
+      Plant plant{params, efficiency};
+      runner.start({MissionKind::kTurn, angle, 0.0, {}}, plant.pose, 0.0);
+      run(runner, plant, 120.0);
+      EXPECT_EQ(runner.status().state, MissionState::kReached) << efficiency << " " << angle;
+      // The loop stops within the tolerance, 0.5°, plus what the ramp carries it on, at most
+      // v2_min²/(2μ)·η·r/(t/2) = 0.09/4·0.9·0.357 = 0.007 rad; a correction brings an overshoot
+      // beyond twice the tolerance back.
+      EXPECT_NEAR(plant.pose.heading_rad, angle, 2 * params.navigation.heading_tolerance_rad + 0.008)
+          << efficiency << " " << angle;
+      EXPECT_NEAR(plant.pose.x_m, 0.0, 1e-12);
+      EXPECT_DOUBLE_EQ(runner.status().progress, 1.0);
+    }
+  }
+}
+
+TEST(MissionRunner, MoveDrivesItsDistanceAlongTheStartHeading) {
+  const Params params;
+  for (const double d : {2.0, -0.5, 0.05}) {
+    MissionRunner runner(params);
+    Plant plant{params};
+    plant.pose.heading_rad = 0.3;
+    runner.start({MissionKind::kMove, 0.0, d, {}}, plant.pose, 0.0);
+    ASSERT_EQ(runner.status().waypoints.size(), 1U);
+    EXPECT_NEAR(runner.status().waypoints[0].x_m, d * std::cos(0.3), 1e-12);
+    const double took = run(runner, plant, 60.0);
+    EXPECT_EQ(runner.status().state, MissionState::kReached) << d;
+    const double along = plant.pose.x_m * std::cos(0.3) + plant.pose.y_m * std::sin(0.3);
+    // Within twice the position tolerance (a leg further off is driven again).
+    EXPECT_NEAR(along, d, 2 * params.navigation.position_tolerance_m) << d;
+    EXPECT_NEAR(plant.pose.heading_rad, 0.3, 0.01) << d;
+    // 2 m at the cruise speed 0.15 m/s takes 13.3 s, with the ramps, the creep and 1.5 s of
+    // standing at most 20 s.
+    if (d == 2.0) {
+      EXPECT_LT(took, 20.0);
+    }
+  }
+}
+
+TEST(MissionRunner, MoveHoldsItsLineAgainstADisturbance) {
+  const Params params;
+  MissionRunner runner(params);
+  Plant plant{params};
+  runner.start({MissionKind::kMove, 0.0, 3.0, {}}, plant.pose, 0.0);
+  double t = 0.0;
+  while (runner.running() && t < 60.0) {
+    t += kH;
+    DriveTargets targets = runner.update(plant.pose, t);
+    plant.step(targets);
+    plant.pose.heading_rad += 0.02 * kH;  // a slope turning the rover left at 0.02 rad/s
+  }
+  EXPECT_EQ(runner.status().state, MissionState::kReached);
+  EXPECT_NEAR(plant.pose.x_m, 3.0, 0.05);
+  EXPECT_NEAR(plant.pose.y_m, 0.0, 0.05);  // pure pursuit pulls it back to the line
+}
+
+TEST(MissionRunner, GotoVisitsEveryWaypointInTurn) {
+  const Params params;
+  MissionRunner runner(params);
+  Plant plant{params};
+  const std::vector<Waypoint> square{{2.0, 0.0}, {2.0, 2.0}, {0.0, 2.0}, {0.0, 0.0}};
+  runner.start({MissionKind::kGoto, 0.0, 0.0, square}, plant.pose, 0.0);
+  EXPECT_DOUBLE_EQ(runner.status().progress, 0.0);
+  std::size_t leg = 0;
+  double t = 0.0, closest_to_corner = 1e9;
+  while (runner.running() && t < 200.0) {
+    t += kH;
+    plant.step(runner.update(plant.pose, t));
+    EXPECT_GE(runner.status().leg, leg);  // never back
+    leg = runner.status().leg;
+    if (leg == 1) closest_to_corner = std::min(closest_to_corner, std::hypot(plant.pose.x_m - 2.0, plant.pose.y_m));
+  }
+  EXPECT_EQ(runner.status().state, MissionState::kReached);
+  EXPECT_EQ(runner.status().leg, 3U);
+  EXPECT_LT(closest_to_corner, 0.05);
+  EXPECT_NEAR(plant.pose.x_m, 0.0, 0.05);
+  EXPECT_NEAR(plant.pose.y_m, 0.0, 0.05);
+  // Four left turns of 90°.
+  EXPECT_NEAR(plant.pose.heading_rad, 3 * kPi / 2, 0.1);
+}
+
+TEST(MissionRunner, NoProgressAbortsWithTheReason) {
+  const Params params;
+  MissionRunner runner(params);
+  estimation::Pose stuck;  // a rover that never moves
+  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, stuck, 0.0);
+  double t = 0.0;
+  DriveTargets last;
+  while (runner.running() && t < 30.0) {
+    t += kH;
+    last = runner.update(stuck, t);
+  }
+  EXPECT_EQ(runner.status().state, MissionState::kAborted);
+  EXPECT_NEAR(t, params.navigation.no_progress_s, 2 * kH);
+  EXPECT_NE(runner.status().reason.find("no progress for 10 s (1 m still to go)"), std::string::npos)
+      << runner.status().reason;
+  EXPECT_EQ(last.v1_radps, 0.0);
+}
+
+TEST(MissionRunner, AbortAndReplaceEndTheRunningMission) {
+  const Params params;
+  MissionRunner runner(params);
+  runner.start({MissionKind::kTurn, 1.0, 0.0, {}}, {}, 0.0);
+  EXPECT_EQ(runner.status().id, 1U);
+  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 1.0);
+  EXPECT_EQ(runner.status().id, 2U);
+  EXPECT_EQ(runner.status().kind, MissionKind::kMove);
+  runner.abort("the operator took over", 2.0);
+  EXPECT_EQ(runner.status().state, MissionState::kAborted);
+  EXPECT_EQ(runner.status().reason, "the operator took over");
+  EXPECT_EQ(runner.update({}, 2.1).v1_radps, 0.0);
+  runner.follow_velocity(3.0);
+  runner.follow_velocity(3.1);  // the same stream
+  EXPECT_EQ(runner.status().id, 3U);
+  EXPECT_EQ(runner.status().kind, MissionKind::kVelocity);
+  EXPECT_TRUE(runner.running());
+  EXPECT_FALSE(runner.driving_mission());
+}
+
+TEST(MissionRunner, NonFinitePoseIsRejected) {
+  MissionRunner runner{Params{}};
+  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 0.0);
+  estimation::Pose bad;
+  bad.x_m = std::nan("");
+  EXPECT_THROW(runner.update(bad, 0.1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace marsokhod::navigation
