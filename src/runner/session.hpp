@@ -87,9 +87,10 @@ class Session {
 };
 
 // The simulator's true pose followed into the odometry frame of the session's driver, the frame
-// its dead-reckoned status.pose is in: a new frame at the first cycle of each (re)started driver
-// (origin: the true middle of the centre axle and the true yaw then). After every step; while the
-// driver is down the truth goes on in the last frame.
+// its dead-reckoned status.pose is in: a (re)started driver's frame starts where its start-up ends
+// (driver.cpp, update_pose: the pose stays zero until then), so the frame starts again at every
+// cycle of a start-up (origin: the true middle of the centre axle and the true yaw then). After
+// every step; while the driver is down the truth goes on in the last frame.
 void follow_truth_odometry(const Session& session, const CycleRecord& cycle,
                            estimation::OdometryFrameTracker& tracker);
 

@@ -144,8 +144,8 @@ TEST(SessionTruthOdometry, TheTruthIsInTheFrameOfTheDriversLatestStart) {
   ASSERT_GT(tracker.pose().heading_rad, 0.3);
   ASSERT_GT(std::hypot(tracker.pose().x_m, tracker.pose().y_m), 0.3);
   near_pose(0.1);
-  // A brown-out: the restarted driver starts a new frame where the rover stands then, facing
-  // where it faces, and so does the truth.
+  // A brown-out: the restarted driver starts a new frame where its start-up ends, facing where
+  // the rover faces then, and so does the truth.
   session.rover().force_brownout();
   while (session.driver_restarts() == 0 || session.status().cycle != 1) {
     ASSERT_LT(session.time_s(), 60.0) << "the driver did not restart";
@@ -154,8 +154,15 @@ TEST(SessionTruthOdometry, TheTruthIsInTheFrameOfTheDriversLatestStart) {
   EXPECT_EQ(tracker.pose().x_m, 0.0);
   EXPECT_EQ(tracker.pose().y_m, 0.0);
   EXPECT_EQ(tracker.pose().heading_rad, 0.0);
-  while (session.status().mode != driver::DriverMode::kDriving) {
+  while (session.status().startup_phase != driver::StartupPhase::kDone) {
     ASSERT_LT(session.time_s(), 70.0) << "the restarted driver did not start up";
+    follow(session, tracker, nullptr, cycle_s);
+  }
+  // The start-up's last cycle was the origin; the rover stands.
+  EXPECT_LT(std::hypot(tracker.pose().x_m, tracker.pose().y_m), 0.002);
+  EXPECT_LT(std::abs(tracker.pose().heading_rad), 0.002);
+  while (session.status().mode != driver::DriverMode::kDriving) {
+    ASSERT_LT(session.time_s(), 70.0) << "the restarted driver did not start driving";
     follow(session, tracker, nullptr, cycle_s);
   }
   follow(session, tracker, &forward, 3.0);

@@ -27,8 +27,8 @@ PlanarPose from_frame(const PlanarPose& origin, const PlanarPose& local);
 // Follows a pose of the outer frame (each cycle's truth) in the odometry frame. The outer yaw may
 // come in any range (−π..π from a rotation matrix): it is unwrapped here, cycle to cycle, so the
 // heading adds up turns as the driver's does. A frame starts at the first observation and
-// whenever the caller says so: at the driver's first cycle, when a restarted driver's pose starts
-// again from zero.
+// whenever the caller says so: while a (re)started driver's pose stays at zero (its start-up),
+// so that the frame starts where the driver's does.
 class OdometryFrameTracker {
  public:
   // One cycle's outer pose. `new_frame`: the frame starts here (this pose becomes its origin).
