@@ -130,6 +130,7 @@ export function missionSummary(m) {
   if (finite(m.progress)) parts.push(`${Math.round(m.progress * 100)} %`);
   if (m.state === 'running' && finite(m.remaining_m)) parts.push(`${m.remaining_m.toFixed(2)} m to go`);
   if (m.state === 'running' && finite(m.remaining_rad)) parts.push(`${(m.remaining_rad * DEG_PER_RAD).toFixed(1)}° to turn`);
+  if (finite(m.corrections) && m.corrections > 0) parts.push(`${m.corrections} correction${m.corrections === 1 ? '' : 's'}`);
   return parts.join(' · ');
 }
 

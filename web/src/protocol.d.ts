@@ -309,6 +309,8 @@ export interface MissionStatus {
   remaining_m: StatusNumber;
   /** Heading still to turn (null when none). */
   remaining_rad: StatusNumber;
+  /** Legs driven again after ending off their target. */
+  corrections?: number;
 }
 
 export interface Status {

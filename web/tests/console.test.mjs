@@ -252,6 +252,49 @@ test('the mission form refuses bad input before sending, and a click on the map 
   assert.deepEqual(page.problems, []);
 });
 
+test('a move of 0.3 m from the form runs, is reached, and draws a track of 0.3 m', async (t) => {
+  const page = pages[1];  // in control, the pad centred
+  await waitForStatus(page, 'the rover stands still', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  const start = await latestStatus(page);
+  assert.ok(start.mission, 'the server reports missions (status.mission)');
+  await page.click('#map-clear');
+  await spyOnSends(page);
+  await page.fill('#mission-form input[name=move_m]', '0.3');
+  await page.click('#mission-move');
+  assert.equal(await page.textContent('#mission-result'), 'sent mission {"kind":"move","distance_m":0.3}');
+  // Every state the statuses show, in order, until the mission is reached.
+  const id = start.mission.id + 1;
+  const states = [];
+  await waitForStatus(page, `mission ${id} was reached`, (s) => {
+    const m = s.mission;
+    if (m && m.id === id && states[states.length - 1] !== m.state) states.push(m.state);
+    return m?.id === id && m.state !== 'running' && states.includes('running');
+  }, null, 30000).catch(async (err) => {
+    throw new Error(`${err.message}; states seen ${JSON.stringify(states)}, sent ${[...new Set(await sentTypes(page))]}`);
+  });
+  const end = await latestStatus(page);
+  assert.equal(end.mission.state, 'reached', `states ${JSON.stringify(states)}, reason "${end.mission.reason}"`);
+  assert.deepEqual(states, ['running', 'reached']);
+  assert.equal(end.mission.kind, 'move');
+  const types = await sentTypes(page);
+  assert.ok(types.includes('mission') && types.includes('heartbeat'),
+    `the console sent the mission and kept it alive: ${[...new Set(types)]}`);
+  await waitForStatus(page, 'the rover stopped at the end of the move', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  const stopped = await latestStatus(page);
+  close(stopped.pose.distance_m - start.pose.distance_m, 0.3, 0.05, 'the estimated distance driven');
+  const map = await mapState(page);
+  close(map.estimatedM, 0.3, 0.05, 'the estimated track on the map');
+  assert.ok(map.truthM > 0.2, `the true track beside it: ${map.truthM} m`);
+  assert.match(await page.textContent('#mission-summary'), new RegExp(`^#${id} move · reached`));
+  const progress = await page.evaluate(() => document.getElementById('mission-progress').value);
+  assert.ok(progress > 0.9, `the progress bar full: ${progress}`);
+  assert.match(await page.textContent('#send-state'), /the reading at 20 Hz/, 'back to the reading once reached');
+  t.diagnostic(`states ${states.join(' → ')}; estimated distance ${(stopped.pose.distance_m - start.pose.distance_m).toFixed(3)} m, ` +
+    `track ${map.estimatedM.toFixed(3)} m, true track ${map.truthM.toFixed(3)} m`);
+  await screenshot(page, 'console-mission-move.png');
+  assert.deepEqual(page.problems, []);
+});
+
 test('the keyboard drives the rover (W), and the configuration reaches the server', async () => {
   const page = pages[1];  // the gamepad's page holds control; its pad is centered
   const form = page.locator('#config-form');

@@ -329,4 +329,8 @@ test('the mission\'s status in one line', () => {
     id: 5, kind: 'move', state: 'aborted', reason: 'the operator fell silent for 0.5 s', progress: 0.1,
     leg: 0, waypoints: [[1, 0]], remaining_m: 0.9,
   }), '#5 move · aborted · 10 %');
+  assert.equal(missionSummary({
+    id: 6, kind: 'goto', state: 'reached', progress: 1, leg: 1, waypoints: [[1, 0], [1, 1]],
+    remaining_m: null, remaining_rad: null, corrections: 1,
+  }), '#6 goto · reached · leg 2 of 2 · 100 % · 1 correction');
 });
