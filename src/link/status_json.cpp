@@ -130,11 +130,12 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
   return out;
 }
 
-Json truth_json(const sim::SimulatedRover& rover) {
+Json truth_json(const sim::SimulatedRover& rover,
+                const std::optional<estimation::PlanarPose>& odometry) {
   const sim::GroundTruth t = rover.truth();
   Json wheels = Json::array();
   for (const auto& w : t.wheel_position_m) wheels.push_back(w);
-  return {{"position_m", t.position_m},
+  Json out = {{"position_m", t.position_m},
           {"roll_pitch_yaw_rad", t.roll_pitch_yaw_rad},
           {"velocity_mps", t.velocity_mps},
           {"joint_angle_rad", t.joint_angle_rad},
@@ -144,6 +145,12 @@ Json truth_json(const sim::SimulatedRover& rover) {
           {"wheel_slip_mps", t.wheel_slip_mps},
           {"supply_v", rover.electrics().supply_v},
           {"computer_on", rover.computer_on()}};
+  if (odometry) {
+    out["odometry"] = {{"x_m", odometry->x_m},
+                       {"y_m", odometry->y_m},
+                       {"heading_rad", odometry->heading_rad}};
+  }
+  return out;
 }
 
 }  // namespace marsokhod::link

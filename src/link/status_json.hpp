@@ -6,8 +6,11 @@
 // UTF-8 when it writes the text.
 #pragma once
 
+#include <optional>
+
 #include <nlohmann/json.hpp>
 
+#include "core/estimation/odometry_frame.hpp"
 #include "driver/status.hpp"
 #include "sim/rover/simulated_rover.hpp"
 
@@ -20,7 +23,10 @@ nlohmann::json status_json(const driver::DriverStatus& status,
 
 // The simulated rover's ground truth for the 3-D view (docs/console.md lists the keys it reads):
 // position_m, roll_pitch_yaw_rad, velocity_mps, joint_angle_rad (8, motor order),
-// wheel_angle_rad (6), wheel_position_m (6 × [x, y, z]), wheel_slip_mps, supply_v, computer_on.
-nlohmann::json truth_json(const sim::SimulatedRover& rover);
+// wheel_angle_rad (6), wheel_position_m (6 × [x, y, z]), wheel_slip_mps, supply_v, computer_on;
+// with `odometry` (the true pose in the driver's odometry frame, estimation/odometry_frame.hpp),
+// also odometry: {x_m, y_m, heading_rad} for the console's map beside the dead-reckoned pose.
+nlohmann::json truth_json(const sim::SimulatedRover& rover,
+                          const std::optional<estimation::PlanarPose>& odometry = std::nullopt);
 
 }  // namespace marsokhod::link

@@ -12,6 +12,7 @@
 
 #include "bus/socketcand_server.hpp"
 #include "bus/transport.hpp"
+#include "core/estimation/odometry_frame.hpp"
 #include "driver/driver.hpp"
 #include "link/listen_address.hpp"
 #include "link/status_json.hpp"
@@ -86,6 +87,7 @@ class SimulatedBus final : public LiveBus {
       }
     }
     const CycleRecord& cycle = session_->step(input);
+    follow_truth_odometry(*session_, cycle, truth_odometry_);
     if (recorder_ != nullptr) {
       recorder_->record(cycle, settings_changed ? std::optional(session_->runtime()) : std::nullopt,
                         session_->status(), session_->rover());
@@ -93,13 +95,18 @@ class SimulatedBus final : public LiveBus {
   }
   const driver::DriverStatus& status() const override { return session_->status(); }
   double time_s() const override { return session_->time_s(); }
-  nlohmann::json truth() const override { return link::truth_json(session_->rover()); }
+  nlohmann::json truth() const override {
+    return link::truth_json(session_->rover(), truth_odometry_.started()
+                                                   ? std::optional(truth_odometry_.pose())
+                                                   : std::nullopt);
+  }
 
  private:
   Session* session_;
   const std::optional<Scenario>* scenario_;
   Recorder* recorder_;
   std::size_t next_fault_ = 0;
+  estimation::OdometryFrameTracker truth_odometry_;  // the truth in the driver's frame
 };
 
 // `drive`: the driver on a CAN transport; the frames that arrive until a cycle is due are its.

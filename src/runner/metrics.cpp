@@ -154,8 +154,9 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   }
   observe_phases(session, now, voltage_drop_v, joint_error_rad(t), bound_excess_rad,
                  {t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint]});
+  follow_truth_odometry(session, cycle, truth_odometry_);
   if (!cycle.driver_running) return;
-  observe_odometry(session, t);
+  observe_odometry(session);
   if (voltage_drop_v) {
     max_voltage_drop_v_ = std::max(max_voltage_drop_v_, *voltage_drop_v);
     min_max_duty_ = std::min(min_max_duty_, s.max_duty);
@@ -240,13 +241,11 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
   m[p + "gait_state_changes"] = end.gait_state_changes - start.gait_state_changes;
 }
 
-void Metrics::observe_odometry(const Session& session, const sim::GroundTruth& t) {
+void Metrics::observe_odometry(const Session& session) {
   const driver::DriverStatus& s = session.status();
   // The driver's odometry frame starts where its start-up ends (driver.cpp, update_pose).
   if (s.cycle == 1 || !odometry_started_ || s.startup_phase != driver::StartupPhase::kDone) {
     odometry_started_ = true;
-    odometry_origin_m_ = {t.position_m[0], t.position_m[1]};
-    odometry_origin_yaw_rad_ = yaw_unwrapped_rad_;
     odometry_origin_path_m_ = path_length_m_;
     wheel_pose_ = {};
   }
@@ -269,13 +268,10 @@ void Metrics::observe_odometry(const Session& session, const sim::GroundTruth& t
 void Metrics::add_odometry_metrics(const Session& session, std::map<std::string, double>& m) const {
   if (!odometry_started_) return;
   // The truth's displacement since the origin, in the frame of the heading there.
-  const double c = std::cos(odometry_origin_yaw_rad_);
-  const double s = std::sin(odometry_origin_yaw_rad_);
-  const double dx = last_position_m_[0] - odometry_origin_m_[0];
-  const double dy = last_position_m_[1] - odometry_origin_m_[1];
-  const double x = c * dx + s * dy;
-  const double y = -s * dx + c * dy;
-  const double heading = yaw_unwrapped_rad_ - odometry_origin_yaw_rad_;
+  const estimation::PlanarPose truth = truth_odometry_.pose();
+  const double x = truth.x_m;
+  const double y = truth.y_m;
+  const double heading = truth.heading_rad;
   const estimation::Pose& p = session.status().pose;
   const double error = std::hypot(p.x_m - x, p.y_m - y);
   const double path = path_length_m_ - odometry_origin_path_m_;

@@ -45,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "core/estimation/odometry_frame.hpp"
 #include "core/params.hpp"
 #include "runner/scenario.hpp"
 #include "runner/session.hpp"
@@ -128,13 +129,12 @@ class Metrics {
   double missions_started_ = 0.0, missions_reached_ = 0.0, missions_aborted_ = 0.0;
   double mission_corrections_ = 0.0, final_mission_progress_ = 0.0;
   void observe_missions(const navigation::MissionStatus& mission);
-  // Odometry: the truth where the driver last (re)started, and the wheel odometry since.
+  // Odometry: the truth in the frame of the driver's last (re)start, and the wheel odometry since.
+  estimation::OdometryFrameTracker truth_odometry_;
   bool odometry_started_ = false;
-  std::array<double, 2> odometry_origin_m_{};
-  double odometry_origin_yaw_rad_ = 0.0;
   double odometry_origin_path_m_ = 0.0;
   std::array<double, 3> wheel_pose_{};  // x, y, ψ
-  void observe_odometry(const Session& session, const sim::GroundTruth& truth);
+  void observe_odometry(const Session& session);
   void add_odometry_metrics(const Session& session, std::map<std::string, double>& m) const;
   bool was_timed_out_ = true;
   double faults_ = 0.0;

@@ -62,4 +62,13 @@ const CycleRecord& Session::step(const driver::OperatorInput* input) {
   return record_;
 }
 
+void follow_truth_odometry(const Session& session, const CycleRecord& cycle,
+                           estimation::OdometryFrameTracker& tracker) {
+  const sim::GroundTruth t = session.rover().truth();
+  const driver::DriverStatus& s = session.status();
+  tracker.observe(t.position_m[0], t.position_m[1], t.roll_pitch_yaw_rad[2],
+                  cycle.driver_running &&
+                      (s.cycle == 1 || s.startup_phase != driver::StartupPhase::kDone));
+}
+
 }  // namespace marsokhod::runner

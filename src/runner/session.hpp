@@ -18,6 +18,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/estimation/odometry_frame.hpp"
 #include "core/params.hpp"
 #include "driver/driver.hpp"
 #include "sim/rover/simulated_rover.hpp"
@@ -84,5 +85,13 @@ class Session {
   std::optional<driver::JointMemory> kept_joints_;
   double kept_time_s_ = 0.0;
 };
+
+// The simulator's true pose followed into the odometry frame of the session's driver, the frame
+// its dead-reckoned status.pose is in: a (re)started driver's frame starts where its start-up ends
+// (driver.cpp, update_pose: the pose stays zero until then), so the frame starts again at every
+// cycle of a start-up (origin: the true middle of the centre axle and the true yaw then). After
+// every step; while the driver is down the truth goes on in the last frame.
+void follow_truth_odometry(const Session& session, const CycleRecord& cycle,
+                           estimation::OdometryFrameTracker& tracker);
 
 }  // namespace marsokhod::runner

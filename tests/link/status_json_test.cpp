@@ -142,6 +142,17 @@ TEST(StatusJson, TruthHasTheKeysTheThreeDViewReads) {
   EXPECT_EQ(truth["supply_v"], rover.electrics().supply_v);
   EXPECT_EQ(truth["computer_on"], true);
   EXPECT_EQ(status_json(sample_status(), truth)["truth"], truth);
+  EXPECT_FALSE(truth.contains("odometry"));
+}
+
+TEST(StatusJson, TruthCarriesThePoseInTheOdometryFrameWhenGiven) {
+  const Params params;
+  const sim::SimulatedRover rover(params, sim::SimOptions{});
+  const nlohmann::json truth = truth_json(rover, estimation::PlanarPose{1.5, -0.25, 3.5});
+  ASSERT_TRUE(truth.contains("odometry"));
+  EXPECT_EQ(truth["odometry"],
+            (nlohmann::json{{"x_m", 1.5}, {"y_m", -0.25}, {"heading_rad", 3.5}}));
+  EXPECT_EQ(truth["position_m"].size(), 3u);
 }
 
 }  // namespace

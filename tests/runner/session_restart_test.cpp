@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/estimation/odometry_frame.hpp"
 #include "runner/session.hpp"
 #include "runner_test_support.hpp"
 
@@ -101,6 +102,73 @@ TEST_P(SessionRestart, ContinuesFromTheKeptJointsAfterABrownOut) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Units, SessionRestart, ::testing::Range<std::uint64_t>(1, 11));
+
+driver::OperatorInput drive_input(double v1_radps, double v2_radps) {
+  driver::OperatorInput input;
+  mobility::OperatorTargets targets;
+  targets.v1_radps = v1_radps;
+  targets.v2_radps = v2_radps;
+  input.targets = targets;
+  return input;
+}
+
+// Steps with `input` for `seconds`, the tracker following the truth (as `marsokhod run` does for
+// the console's map).
+void follow(Session& session, estimation::OdometryFrameTracker& tracker,
+            const driver::OperatorInput* input, double seconds) {
+  const long cycles = std::lround(seconds / (static_cast<double>(session.cycle_us()) * 1e-6));
+  for (long k = 0; k < cycles; ++k) follow_truth_odometry(session, session.step(input), tracker);
+}
+
+TEST(SessionTruthOdometry, TheTruthIsInTheFrameOfTheDriversLatestStart) {
+  const Params& params = shipped_params();
+  Session session(params, sim::SimOptions{});
+  estimation::OdometryFrameTracker tracker;
+  const double cycle_s = static_cast<double>(session.cycle_us()) * 1e-6;
+  while (session.status().mode != driver::DriverMode::kDriving) {
+    ASSERT_LT(session.time_s(), 10.0) << "the driver did not start up";
+    follow(session, tracker, nullptr, cycle_s);
+  }
+  const auto near_pose = [&](double tolerance_m) {
+    const estimation::PlanarPose truth = tracker.pose();
+    const estimation::Pose& pose = session.status().pose;
+    EXPECT_NEAR(truth.x_m, pose.x_m, tolerance_m);
+    EXPECT_NEAR(truth.y_m, pose.y_m, tolerance_m);
+    EXPECT_NEAR(truth.heading_rad, pose.heading_rad, 0.15);
+  };
+  // A spin to the left, then forward: the first frame's x is the start heading.
+  const driver::OperatorInput spin = drive_input(0.0, 1.0);
+  const driver::OperatorInput forward = drive_input(1.5, 0.0);
+  follow(session, tracker, &spin, 2.0);
+  follow(session, tracker, &forward, 3.0);
+  ASSERT_GT(tracker.pose().heading_rad, 0.3);
+  ASSERT_GT(std::hypot(tracker.pose().x_m, tracker.pose().y_m), 0.3);
+  near_pose(0.1);
+  // A brown-out: the restarted driver starts a new frame where its start-up ends, facing where
+  // the rover faces then, and so does the truth.
+  session.rover().force_brownout();
+  while (session.driver_restarts() == 0 || session.status().cycle != 1) {
+    ASSERT_LT(session.time_s(), 60.0) << "the driver did not restart";
+    follow(session, tracker, nullptr, cycle_s);
+  }
+  EXPECT_EQ(tracker.pose().x_m, 0.0);
+  EXPECT_EQ(tracker.pose().y_m, 0.0);
+  EXPECT_EQ(tracker.pose().heading_rad, 0.0);
+  while (session.status().startup_phase != driver::StartupPhase::kDone) {
+    ASSERT_LT(session.time_s(), 70.0) << "the restarted driver did not start up";
+    follow(session, tracker, nullptr, cycle_s);
+  }
+  // The start-up's last cycle was the origin; the rover stands.
+  EXPECT_LT(std::hypot(tracker.pose().x_m, tracker.pose().y_m), 0.002);
+  EXPECT_LT(std::abs(tracker.pose().heading_rad), 0.002);
+  while (session.status().mode != driver::DriverMode::kDriving) {
+    ASSERT_LT(session.time_s(), 70.0) << "the restarted driver did not start driving";
+    follow(session, tracker, nullptr, cycle_s);
+  }
+  follow(session, tracker, &forward, 3.0);
+  EXPECT_GT(tracker.pose().x_m, 0.3);
+  near_pose(0.1);
+}
 
 }  // namespace
 }  // namespace marsokhod::runner

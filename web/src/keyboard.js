@@ -1,6 +1,7 @@
 // The keyboard as a synthetic standard-layout gamepad, so that the server's map of Remark 5.7
 // (docs/gamepad.md) applies unchanged. Keys are physical positions (KeyboardEvent.code), so the
-// map is the same on every layout. Space is STOP, handled by the caller (onStop).
+// map is the same on every layout. Space is STOP (except in a text field: isTextEntry), handled by the
+// caller (onStop).
 
 import { neutralReading } from './gamepad.js';
 
@@ -69,6 +70,15 @@ function isFormField(target) {
     (target.isContentEditable || ['INPUT', 'SELECT', 'TEXTAREA'].includes(target.tagName));
 }
 
+// A field that takes text, where the space bar types a space (the mission form's waypoints,
+// "2,0; 2,2"); everywhere else it is STOP.
+/** @param {EventTarget | null} target */
+export function isTextEntry(target) {
+  if (!(target instanceof HTMLElement)) return false;
+  if (target.isContentEditable || target.tagName === 'TEXTAREA') return true;
+  return target instanceof HTMLInputElement && ['text', 'search'].includes(target.type);
+}
+
 export class Keyboard {
   /**
    * @param {Window} target
@@ -91,8 +101,8 @@ export class Keyboard {
    * @param {() => void} onStop
    */
   down(event, onStop) {
-    if (event.code === 'Space') {
-      // Always STOP, also with the focus on a button (whose own activation by space is cancelled).
+    if (event.code === 'Space' && !isTextEntry(event.target)) {
+      // STOP, also with the focus on a button (whose own activation by space is cancelled).
       event.preventDefault();
       if (!event.repeat) onStop();
       return;
@@ -107,7 +117,7 @@ export class Keyboard {
 
   /** @param {KeyboardEvent} event */
   up(event) {
-    if (event.code === 'Space') {
+    if (event.code === 'Space' && !isTextEntry(event.target)) {
       event.preventDefault();
       return;
     }

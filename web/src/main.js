@@ -1,6 +1,7 @@
 // The console: connects to the link server, shows its status, and while it holds control sends
 // the operator's gamepad (or keyboard) reading at 20 Hz, continuously — the driver stops the
-// rover after 0.5 s without input (docs/operator-protocol.md, "Control").
+// rover after 0.5 s without input (docs/operator-protocol.md, "Control"). While a mission runs
+// and the reading is neutral it sends a heartbeat at 10 Hz instead (mission.js).
 
 import './style.css';
 import { Link, websocketUrl, exchangeToken, addressWithoutToken } from './link.js';
@@ -10,6 +11,8 @@ import { StatusPanel } from './status.js';
 import { Plots } from './plots.js';
 import { RoverView } from './view3d.js';
 import { ConfigPanel } from './config.js';
+import { MapPanel, pathLength } from './map.js';
+import { MissionPanel, inputToSend } from './mission.js';
 import { element } from './dom.js';
 
 /** @typedef {import('./protocol').GamepadReading} GamepadReading */
@@ -34,9 +37,18 @@ const config = new ConfigPanel(element(document, 'config-form', HTMLFormElement)
   clearFaults: () => link.send({ type: 'clear_faults' }),
 });
 const keyboard = new Keyboard(window, { onStop: stop });
+const map = new MapPanel(element(document, 'map-canvas', HTMLCanvasElement), {
+  onClick: (p) => mission.addWaypoint(p),
+});
+const mission = new MissionPanel(document, {
+  send: (message) => link.sendInput(message),
+  stop,
+  onDraft: (points) => map.setDraft(points),
+});
+$('map-clear').addEventListener('click', () => map.clearTrack());
 
-// For the browser's developer tools and the tests: the link and the newest status.
-window.marsokhod = { link, view, status: null };
+// For the browser's developer tools and the tests: the link, the views and the newest status.
+window.marsokhod = { link, view, map, status: null };
 
 // STOP latches: the console sends the neutral reading until the operator has let go of every
 // stick, button and key — otherwise its next 20 Hz message, the stick still pushed, would drive
@@ -51,7 +63,9 @@ function isNeutral(reading) {
 
 function stop() {
   stopLatched = true;
-  if (!link.stop()) showError('STOP not sent: not connected (a controlling console that drops off stops the rover anyway)');
+  const sent = link.stop();
+  if (!sent) showError('STOP not sent: not connected (a controlling console that drops off stops the rover anyway)');
+  return sent;
 }
 
 // The driver holds a stop until the controller's input is neutral (docs/operator-protocol.md):
@@ -92,6 +106,7 @@ function showLinkState() {
   button('take-control').disabled = !connected || link.inControl;
   button('release-control').disabled = !link.inControl;
   config.setEnabled(link.inControl);
+  mission.setEnabled(link.inControl);
 }
 
 link.on('state', showLinkState);
@@ -112,6 +127,12 @@ link.on('status', ({ status }) => {
   plots.add(status);
   view.update(status);
   $('view-source').textContent = status.truth ? '(simulator ground truth)' : '(joint angles, rover placed level)';
+  map.update(status);
+  mission.update(status.mission);
+  $('legend-truth').hidden = !status.truth?.odometry;
+  const info = `track ${pathLength(map.tracks.estimated).toFixed(2)} m` +
+    (map.tracks.truth.length > 1 ? `, true ${pathLength(map.tracks.truth).toFixed(2)} m` : '');
+  if ($('map-info').textContent !== info) $('map-info').textContent = info;
 });
 
 $('take-control').addEventListener('click', () => link.takeControl());
@@ -153,18 +174,25 @@ function frame(now) {
   showReading(currentReading());
   plots.draw(now);
   view.draw();
+  map.draw();
   requestAnimationFrame(frame);
 }
 
 // Sent from a timer, not from animation frames: browsers pause those in a hidden tab.
+let tick = 0;
 setInterval(() => {
   let sending = 'nothing (read-only)';
+  tick += 1;
   if (link.inControl && document.visibilityState === 'visible') {
     const reading = currentReading();
-    if (stopLatched && isNeutral(reading)) stopLatched = false;
-    link.sendInput(gamepadMessage(stopLatched ? neutralReading() : reading));
+    const neutral = isNeutral(reading);
+    if (stopLatched && neutral) stopLatched = false;
+    const what = inputToSend({ missionActive: mission.active(), neutral, stopLatched, tick });
+    if (what === 'gamepad') link.sendInput(gamepadMessage(stopLatched ? neutralReading() : reading));
+    else if (what === 'heartbeat') link.sendInput({ type: 'heartbeat' });
     sending = stopLatched ? 'neutral: STOPPED, let go of every stick and key to drive again'
-      : 'the reading at 20 Hz';
+      : what === 'gamepad' ? 'the reading at 20 Hz'
+        : 'heartbeat at 10 Hz: the mission drives (push a stick to take over)';
   } else if (link.inControl) {
     sending = 'nothing: page hidden, the rover stops';
   }

@@ -46,11 +46,57 @@ export interface TargetsInput {
   calibration_mode?: boolean;
 }
 
+/** cmd_vel: the rover's speed and turn rate directly; a stream like `targets`. */
+export interface VelocityInput {
+  type: 'velocity';
+  /** Forward speed [m/s], < 0 backwards. */
+  v_mps: number;
+  /** Turn rate [rad/s], > 0 counter-clockwise. */
+  yaw_radps: number;
+}
+
+/** A waypoint in the odometry frame (the frame of `status.pose`) [m]. */
+export interface Waypoint {
+  x_m: number;
+  y_m: number;
+}
+
+/** Turn by a relative heading, + counter-clockwise (left). */
+export interface TurnMission {
+  type: 'mission';
+  kind: 'turn';
+  angle_rad: number;
+}
+
+/** Drive a distance along the current heading, < 0 backwards. */
+export interface MoveMission {
+  type: 'mission';
+  kind: 'move';
+  distance_m: number;
+}
+
+/** Drive through 1..64 waypoints in the odometry frame. */
+export interface GotoMission {
+  type: 'mission';
+  kind: 'goto';
+  waypoints: Waypoint[];
+}
+
+export type MissionInput = TurnMission | MoveMission | GotoMission;
+
+/** Keeps a running mission alive (operator input that moves nothing itself). */
+export interface HeartbeatInput {
+  type: 'heartbeat';
+}
+
 /** An operator input before `Link.sendInput` stamps it. */
-export type OperatorInput = GamepadInput | TargetsInput;
+export type OperatorInput = GamepadInput | TargetsInput | VelocityInput | MissionInput | HeartbeatInput;
 
 export type GamepadMessage = GamepadInput & InputStamp;
 export type TargetsMessage = TargetsInput & InputStamp;
+export type VelocityMessage = VelocityInput & InputStamp;
+export type MissionMessage = MissionInput & InputStamp;
+export type HeartbeatMessage = HeartbeatInput & InputStamp;
 
 export type BehaviourName =
   | 'power_management'
@@ -76,7 +122,14 @@ export interface CommandMessage {
   type: 'stop' | 'clear_faults' | 'take_control' | 'release_control' | 'ping';
 }
 
-export type ConsoleMessage = GamepadMessage | TargetsMessage | ConfigureMessage | CommandMessage;
+export type ConsoleMessage =
+  | GamepadMessage
+  | TargetsMessage
+  | VelocityMessage
+  | MissionMessage
+  | HeartbeatMessage
+  | ConfigureMessage
+  | CommandMessage;
 
 // ---- Server → console ----
 
@@ -221,6 +274,43 @@ export interface Truth {
   wheel_slip_mps?: number[];
   supply_v?: number;
   computer_on?: boolean;
+  /** The true pose in the odometry frame of the driver's (re)start, the frame of `status.pose`. */
+  odometry?: TruthOdometry;
+}
+
+/** The simulator's true pose carried into the driver's odometry frame. */
+export interface TruthOdometry {
+  x_m: StatusNumber;
+  y_m: StatusNumber;
+  /** Unwrapped, like `pose.heading_rad`. */
+  heading_rad: StatusNumber;
+}
+
+export type MissionKind = 'none' | 'velocity' | 'turn' | 'move' | 'goto';
+export type MissionState = 'idle' | 'running' | 'reached' | 'aborted';
+
+/** The operator's mission: velocity, turn, move or goto. */
+export interface MissionStatus {
+  /** Counts missions started, 0 before any. */
+  id: number;
+  kind: MissionKind;
+  state: MissionState;
+  /** Why it was aborted, else "". */
+  reason: string;
+  /** 0..1. */
+  progress: StatusNumber;
+  /** goto: the index of the waypoint being driven to; else 0. */
+  leg: number;
+  /** goto's waypoints; turn/move: [[x, y]] of the end point ([] for turn). */
+  waypoints: StatusNumber[][];
+  /** The heading being turned or held to (null when none). */
+  target_heading_rad: StatusNumber;
+  /** Distance still to go (null for turn). */
+  remaining_m: StatusNumber;
+  /** Heading still to turn (null when none). */
+  remaining_rad: StatusNumber;
+  /** Legs driven again after ending off their target. */
+  corrections?: number;
 }
 
 export interface Status {
@@ -260,5 +350,7 @@ export interface Status {
   pose: Pose;
   attitude: Attitude;
   stalled_s: StatusNumber;
+  /** Absent from servers without missions. */
+  mission?: MissionStatus;
   truth?: Truth;
 }

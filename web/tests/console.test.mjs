@@ -21,6 +21,8 @@ const MOVE_TIMEOUT_MS = 8000;
 // The server's driver stops the rover after 0.5 s without input; a stop reaches it at once.
 const STOP_TIMEOUT_MS = 1500;
 const STILL_DUTY = 0.02;
+const close = (actual, expected, tolerance, what) =>
+  assert.ok(Math.abs(actual - expected) <= tolerance, `${what}: ${actual} is not ${expected} ± ${tolerance}`);
 
 let server;
 let browser;
@@ -102,6 +104,194 @@ test('a scripted gamepad drives the rover forward', async () => {
   await screenshot(page, 'console-driving-gamepad.png');
   await setPad(page, { axes: CENTERED });
   await waitForStatus(page, 'the wheels stopped after the stick was centered', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  assert.deepEqual(page.problems, []);
+});
+
+// The map's tracks as the page holds them: their lengths [m] and point counts, and how many
+// pixels of the canvas have each track's colour.
+function mapState(page) {
+  return page.evaluate(() => {
+    const { map } = window.marsokhod;
+    const length = (points) => points.reduce((sum, p, i) =>
+      (i === 0 ? 0 : sum + Math.hypot(p.x - points[i - 1].x, p.y - points[i - 1].y)), 0);
+    const canvas = document.getElementById('map-canvas');
+    const ctx = canvas.getContext('2d');
+    const data = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
+    const count = (r, g, b) => {
+      let n = 0;
+      for (let i = 0; i < data.length; i += 4) {
+        if (Math.abs(data[i] - r) < 8 && Math.abs(data[i + 1] - g) < 8 && Math.abs(data[i + 2] - b) < 8 && data[i + 3] > 200) n += 1;
+      }
+      return n;
+    };
+    const last = (points) => points[points.length - 1] ?? null;
+    return {
+      estimatedM: length(map.tracks.estimated), estimatedPoints: map.tracks.estimated.length,
+      truthM: length(map.tracks.truth), truthPoints: map.tracks.truth.length,
+      estimatedEnd: last(map.tracks.estimated), truthEnd: last(map.tracks.truth),
+      bluePixels: count(0x1f, 0x6f, 0xeb), orangePixels: count(0xe8, 0x59, 0x0c),
+      info: document.getElementById('map-info').textContent,
+      truthLegend: !document.getElementById('legend-truth').hidden,
+    };
+  });
+}
+
+// Records the type of every message the page sends from now on (sentTypes reads them).
+function spyOnSends(page) {
+  return page.evaluate(() => {
+    const { link } = window.marsokhod;
+    window.__sent = [];
+    if (!window.__spying) {
+      const send = link.send.bind(link);
+      link.send = (message) => { window.__sent.push(message.type); return send(message); };
+      window.__spying = true;
+    }
+  });
+}
+
+function sentTypes(page) {
+  return page.evaluate(() => window.__sent);
+}
+
+// Waits until `predicate(mapState)` holds, polled every 50 ms from here.
+async function waitForMap(page, what, predicate, timeoutMs) {
+  const deadline = Date.now() + timeoutMs;
+  let state;
+  for (;;) {
+    state = await mapState(page);
+    if (predicate(state)) return state;
+    if (Date.now() >= deadline) break;
+    await new Promise((resolve) => setTimeout(resolve, 50));
+  }
+  throw new Error(`timed out after ${timeoutMs} ms waiting until ${what}; the map: ${JSON.stringify(state)}`);
+}
+
+test('the map draws the estimated track growing while driving, and the true track beside it', async () => {
+  const page = pages[1];  // holds control, the pad centred
+  await waitForStatus(page, 'the rover stands still', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  await page.click('#map-clear');
+  const cleared = await mapState(page);
+  assert.ok(cleared.estimatedM < 0.02, `a cleared track is (nearly) empty: ${cleared.estimatedM} m`);
+  const status = await latestStatus(page);
+  assert.ok(status.truth.odometry, 'marsokhod run sends the truth in the odometry frame');
+  for (const key of ['x_m', 'y_m', 'heading_rad']) assert.equal(typeof status.truth.odometry[key], 'number', key);
+  assert.equal(typeof status.pose.x_m, 'number');
+
+  await setPad(page, { axes: STICK_UP });
+  const grown = await waitForMap(page, 'the estimated track grew by 0.15 m', (m) => m.estimatedM > 0.15, MOVE_TIMEOUT_MS);
+  const more = await waitForMap(page, 'the estimated track grew further', (m) => m.estimatedM > grown.estimatedM + 0.05, MOVE_TIMEOUT_MS);
+  await setPad(page, { axes: CENTERED });
+  await waitForStatus(page, 'the wheels stopped after the stick was centered', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  assert.ok(more.estimatedPoints > grown.estimatedPoints, 'points are added as the rover drives');
+  assert.ok(more.truthM > 0.1, `the true track grew too: ${more.truthM} m`);
+  assert.equal(more.truthLegend, true, 'the legend names the true track');
+  // Both tracks run the same way: their ends lie close together against the way driven.
+  const apart = Math.hypot(more.estimatedEnd.x - more.truthEnd.x, more.estimatedEnd.y - more.truthEnd.y);
+  assert.ok(apart < 0.5 * more.estimatedM, `estimate and truth ${apart} m apart after ${more.estimatedM} m`);
+  assert.ok(more.estimatedEnd.x > 0.1, `forward is +x: ${JSON.stringify(more.estimatedEnd)}`);
+  assert.ok(more.bluePixels > 50 && more.orangePixels > 20,
+    `both tracks drawn: ${more.bluePixels} blue, ${more.orangePixels} orange pixels`);
+  assert.match(more.info, /^track \d+\.\d\d m, true \d+\.\d\d m$/);
+  await screenshot(page, 'console-map.png');
+  assert.deepEqual(page.problems, []);
+});
+
+test('the mission form refuses bad input before sending, and a click on the map adds a waypoint', async () => {
+  const page = pages[1];  // in control
+  const result = () => page.textContent('#mission-result');
+  await spyOnSends(page);
+  await page.fill('#mission-form input[name=turn_deg]', 'left');
+  await page.click('#mission-turn');
+  assert.equal(await result(), 'turn: "left" is not a number (°)');
+  await page.fill('#mission-form input[name=move_m]', '');
+  await page.click('#mission-move');
+  assert.equal(await result(), 'move: empty; type a number in m');
+  await page.fill('#mission-form input[name=move_m]', '250');
+  await page.click('#mission-move');
+  assert.equal(await result(), 'move: 250 is out of range; allowed −100..100 m');
+  await page.fill('#mission-form input[name=goto]', '1,2; 3');
+  await page.click('#mission-goto');
+  assert.equal(await result(), 'go to: waypoint 2: "3" is not x,y (two numbers in metres)');
+  assert.equal(await page.getAttribute('#mission-result', 'class'), 'hint bad');
+  const types = await sentTypes(page);
+  assert.ok(types.includes('gamepad'), 'the 20 Hz reading goes on');
+  assert.equal(types.includes('mission'), false, `nothing refused was sent: ${[...new Set(types)]}`);
+
+  // A space in the waypoints' field types a space, it is not STOP there.
+  await page.fill('#mission-form input[name=goto]', '');
+  await page.click('#mission-form input[name=goto]');
+  await page.keyboard.type('1,0; 2,0');
+  assert.equal(await page.inputValue('#mission-form input[name=goto]'), '1,0; 2,0');
+  assert.doesNotMatch(await page.textContent('#send-state'), /STOPPED/);
+  await page.click('#mission-clear-waypoints');
+  assert.equal(await page.inputValue('#mission-form input[name=goto]'), '');
+
+  // Clicks on the map: waypoints where the map shows them, in metres.
+  // The view refits with every status: the first click and the transform it meets are read in
+  // one task of the page; the second is a real click.
+  const box = await page.locator('#map-canvas').boundingBox();
+  const expected = await page.evaluate(([x, y]) => {
+    const canvas = document.getElementById('map-canvas');
+    const rect = canvas.getBoundingClientRect();
+    const t = window.marsokhod.map.transform;
+    // A mouse event's clientX, clientY are whole pixels.
+    const clientX = Math.round(rect.left + x);
+    const clientY = Math.round(rect.top + y);
+    canvas.dispatchEvent(new MouseEvent('click', { clientX, clientY, bubbles: true }));
+    return { x: (clientX - rect.left - t.ox) / t.scale, y: (t.oy - (clientY - rect.top)) / t.scale };
+  }, [box.width / 4, box.height / 2]);
+  await page.click('#map-canvas', { position: { x: box.width / 2, y: box.height / 4 } });
+  const typed = await page.inputValue('#mission-form input[name=goto]');
+  const points = typed.split(';').map((p) => p.split(',').map(Number));
+  assert.equal(points.length, 2, `two waypoints: "${typed}"`);
+  close(points[0][0], expected.x, 0.005 + 1e-9, 'first waypoint x (to the centimetre)');
+  close(points[0][1], expected.y, 0.005 + 1e-9, 'first waypoint y');
+  const draft = await page.evaluate(() => window.marsokhod.map.draft.length);
+  assert.equal(draft, 2, 'the map shows the typed waypoints');
+  await page.click('#mission-clear-waypoints');
+  assert.deepEqual(page.problems, []);
+});
+
+test('a move of 0.3 m from the form runs, is reached, and draws a track of 0.3 m', async (t) => {
+  const page = pages[1];  // in control, the pad centred
+  await waitForStatus(page, 'the rover stands still', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  const start = await latestStatus(page);
+  assert.ok(start.mission, 'the server reports missions (status.mission)');
+  await page.click('#map-clear');
+  await spyOnSends(page);
+  await page.fill('#mission-form input[name=move_m]', '0.3');
+  await page.click('#mission-move');
+  assert.equal(await page.textContent('#mission-result'), 'sent mission {"kind":"move","distance_m":0.3}');
+  // Every state the statuses show, in order, until the mission is reached.
+  const id = start.mission.id + 1;
+  const states = [];
+  await waitForStatus(page, `mission ${id} was reached`, (s) => {
+    const m = s.mission;
+    if (m && m.id === id && states[states.length - 1] !== m.state) states.push(m.state);
+    return m?.id === id && m.state !== 'running' && states.includes('running');
+  }, null, 30000).catch(async (err) => {
+    throw new Error(`${err.message}; states seen ${JSON.stringify(states)}, sent ${[...new Set(await sentTypes(page))]}`);
+  });
+  const end = await latestStatus(page);
+  assert.equal(end.mission.state, 'reached', `states ${JSON.stringify(states)}, reason "${end.mission.reason}"`);
+  assert.deepEqual(states, ['running', 'reached']);
+  assert.equal(end.mission.kind, 'move');
+  const types = await sentTypes(page);
+  assert.ok(types.includes('mission') && types.includes('heartbeat'),
+    `the console sent the mission and kept it alive: ${[...new Set(types)]}`);
+  await waitForStatus(page, 'the rover stopped at the end of the move', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  const stopped = await latestStatus(page);
+  close(stopped.pose.distance_m - start.pose.distance_m, 0.3, 0.05, 'the estimated distance driven');
+  const map = await mapState(page);
+  close(map.estimatedM, 0.3, 0.05, 'the estimated track on the map');
+  assert.ok(map.truthM > 0.2, `the true track beside it: ${map.truthM} m`);
+  assert.match(await page.textContent('#mission-summary'), new RegExp(`^#${id} move · reached`));
+  const progress = await page.evaluate(() => document.getElementById('mission-progress').value);
+  assert.ok(progress > 0.9, `the progress bar full: ${progress}`);
+  assert.match(await page.textContent('#send-state'), /the reading at 20 Hz/, 'back to the reading once reached');
+  t.diagnostic(`states ${states.join(' → ')}; estimated distance ${(stopped.pose.distance_m - start.pose.distance_m).toFixed(3)} m, ` +
+    `track ${map.estimatedM.toFixed(3)} m, true track ${map.truthM.toFixed(3)} m`);
+  await screenshot(page, 'console-mission-move.png');
   assert.deepEqual(page.problems, []);
 });
 

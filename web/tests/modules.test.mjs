@@ -1,6 +1,7 @@
 // The console's pure parts, in node without a browser: the geometry of the 3-D view (values worked
 // out by hand from a = 0.145 m, b = 0.413 m), the keyboard's synthetic gamepad, the gamepad
-// reading, the `configure` message, the WebSocket address and the status' formatting.
+// reading, the `configure` message, the WebSocket address, the status' formatting, the map's
+// transform, fit, grid and tracks, and the mission form's messages and heartbeat.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -10,6 +11,11 @@ import { readPad, firstStandardPad, mergeReadings, gamepadMessage, neutralReadin
 import { configureMessage } from '../src/config.js';
 import { websocketUrl, addressWithoutToken } from '../src/link.js';
 import { missionTime, lcdDisplay } from '../src/status.js';
+import {
+  parseNumber, parseWaypoints, formatWaypoints, boundsOf, fitView, toScreen, toWorld, gridStep,
+  pathLength, TrackLog, missionWaypoints, missionTarget, formatMetres,
+} from '../src/map.js';
+import { missionMessage, inputToSend, MissionWatch, missionSummary, PENDING_MS } from '../src/mission.js';
 
 const A = 0.145, B = 0.413;
 const close = (actual, expected, tolerance, what) =>
@@ -143,4 +149,188 @@ test('lcdDisplay: the driver\'s eight characters, then the voltage as µ8 shows 
   assert.equal(lcdDisplay('TO +0.0d', 24.5673), 'TO +0.0d  24.57V');
   assert.equal(lcdDisplay(undefined, null), '              –V');
   assert.equal(lcdDisplay('short', 9.5), 'short      9.50V');
+});
+
+test('numbers as people type them, and nothing else', () => {
+  assert.equal(parseNumber(' 1.5 '), 1.5);
+  assert.equal(parseNumber('-0.25'), -0.25);
+  assert.equal(parseNumber('+.5'), 0.5);
+  assert.equal(parseNumber('2e-1'), 0.2);
+  assert.equal(parseNumber('3.'), 3);
+  for (const bad of ['', ' ', 'abc', '1,5', '0x10', 'Infinity', 'NaN', '1e', '--1', '1 2']) {
+    assert.equal(parseNumber(bad), null, `"${bad}" is not a number`);
+  }
+});
+
+test('waypoints typed as "x,y; x,y"', () => {
+  assert.deepEqual(parseWaypoints('2,0; 2,2'), { waypoints: [{ x: 2, y: 0 }, { x: 2, y: 2 }] });
+  assert.deepEqual(parseWaypoints(' -1.5 , .5 ;\n3,4;'), { waypoints: [{ x: -1.5, y: 0.5 }, { x: 3, y: 4 }] },
+    'spaces, new lines and a trailing separator');
+  assert.match(parseWaypoints('').error, /^no waypoints/);
+  assert.match(parseWaypoints('  ;  ').error, /^no waypoints/);
+  assert.equal(parseWaypoints('1,2;;3,4').error, 'waypoint 2: "" is not x,y (two numbers in metres)');
+  assert.equal(parseWaypoints('1,2; 3').error, 'waypoint 2: "3" is not x,y (two numbers in metres)');
+  assert.equal(parseWaypoints('1,2,3').error, 'waypoint 1: "1,2,3" is not x,y (two numbers in metres)');
+  assert.equal(parseWaypoints('1,NaN').error, 'waypoint 1: "1,NaN" is not x,y (two numbers in metres)');
+  assert.equal(parseWaypoints('1,x').error, 'waypoint 1: "1,x" is not x,y (two numbers in metres)');
+  assert.equal(parseWaypoints('0,0; 1001,0').error, 'waypoint 2: 1001,0 is 1001.0 m from the origin; at most 1000 m');
+  assert.equal(parseWaypoints('800,-600').waypoints.length, 1, '1000 m from the origin: allowed');
+  assert.equal(parseWaypoints('800,-600.5').error, 'waypoint 1: 800,-600.5 is 1000.3 m from the origin; at most 1000 m');
+  assert.equal(parseWaypoints('1,1;2,2;3,3', { max: 2 }).error, '3 waypoints; at most 2');
+  assert.equal(parseWaypoints(Array(64).fill('1,1').join(';')).waypoints.length, 64);
+  assert.equal(parseWaypoints(Array(65).fill('1,1').join(';')).error, '65 waypoints; at most 64');
+  assert.equal(formatWaypoints([{ x: 1.234, y: -0.5 }, { x: 2, y: 0.005 }]), '1.23,-0.5; 2,0.01');
+  assert.deepEqual(parseWaypoints(formatWaypoints([{ x: 1.25, y: -3 }])).waypoints, [{ x: 1.25, y: -3 }]);
+});
+
+test('the map fits its points with the same scale both ways, x right and y up', () => {
+  const b = boundsOf([{ x: 0, y: 0 }, { x: 4, y: 1 }, { x: 2, y: -1 }, { x: NaN, y: 9 }]);
+  assert.deepEqual(b, { minX: 0, maxX: 4, minY: -1, maxY: 1 }, 'non-finite points left out');
+  assert.equal(boundsOf([]), null);
+  // 4 m × 2 m into 420 × 320 px with 10 px margins: x limits, 400/4 = 100 px/m; the centre
+  // (2, 0) in the middle (210, 160).
+  const t = fitView(b, 420, 320, { margin: 10, minSpan: 1 });
+  assert.equal(t.scale, 100);
+  assert.deepEqual(toScreen(t, { x: 2, y: 0 }), { x: 210, y: 160 });
+  assert.deepEqual(toScreen(t, { x: 0, y: 1 }), { x: 10, y: 60 }, 'left edge; y up is up the screen');
+  assert.deepEqual(toScreen(t, { x: 4, y: -1 }), { x: 410, y: 260 });
+  assert.deepEqual(toWorld(t, { x: 410, y: 260 }), { x: 4, y: -1 }, 'toWorld undoes toScreen');
+  // A tall box: y limits. 1 m × 6 m into 420 × 320: (320 − 20)/6 = 50 px/m.
+  const tall = fitView({ minX: 0, maxX: 1, minY: 0, maxY: 6 }, 420, 320, { margin: 10, minSpan: 1 });
+  assert.equal(tall.scale, 50);
+  assert.deepEqual(toScreen(tall, { x: 0.5, y: 6 }), { x: 210, y: 10 });
+  // A single point (the rover standing): at least minSpan across, centred on it.
+  const one = fitView({ minX: 3, maxX: 3, minY: 3, maxY: 3 }, 420, 320, { margin: 10, minSpan: 2 });
+  assert.equal(one.scale, 150);
+  assert.deepEqual(toScreen(one, { x: 3, y: 3 }), { x: 210, y: 160 });
+  const none = fitView(null, 420, 320, { margin: 10, minSpan: 2 });
+  assert.deepEqual(toScreen(none, { x: 0, y: 0 }), { x: 210, y: 160 }, 'nothing to show: the origin in the middle');
+});
+
+test('the grid steps 1-2-5 metres, at least 40 px apart', () => {
+  assert.equal(gridStep(100), 0.5);    // 0.4 m needed
+  assert.equal(gridStep(40), 1);       // exactly 1 m
+  assert.equal(gridStep(30), 2);       // 1.33 m needed
+  assert.equal(gridStep(10), 5);       // 4 m needed
+  assert.equal(gridStep(5), 10);       // 8 m needed
+  assert.equal(gridStep(1000), 0.05);  // 0.04 m needed
+  assert.equal(formatMetres(2), '2 m');
+  assert.equal(formatMetres(0.5), '50 cm');
+  assert.equal(formatMetres(0.005), '5 mm');
+});
+
+test('tracks grow by points 5 mm apart and start again with a new driver frame', () => {
+  const log = new TrackLog({ minStep: 0.005, maxPoints: 1000 });
+  const status = (t, x, y, distance, truth) => ({
+    mission_time_s: t, pose: { x_m: x, y_m: y, distance_m: distance },
+    ...(truth ? { truth: { odometry: { x_m: truth[0], y_m: truth[1], heading_rad: 0 } } } : {}),
+  });
+  assert.equal(log.add(status(1, 0, 0, 0)), false);
+  log.add(status(1.05, 0.003, 0, 0.003));  // 3 mm from the last point: not kept
+  log.add(status(1.1, 0.3, 0.4, 0.5, [0.31, 0.41]));
+  log.add(status(1.15, 0.6, 0.8, 1.0, [0.62, 0.82]));
+  assert.deepEqual(log.estimated, [{ x: 0, y: 0 }, { x: 0.3, y: 0.4 }, { x: 0.6, y: 0.8 }]);
+  assert.equal(pathLength(log.estimated), 1.0);
+  assert.deepEqual(log.truth, [{ x: 0.31, y: 0.41 }, { x: 0.62, y: 0.82 }], 'the truth only where present');
+  log.add(status(1.2, 0.6, 0.8, 1.0, [null, 0.8]));
+  assert.equal(log.truth.length, 2, 'a non-finite truth is left out');
+  // The distance going back: a restarted driver's frame. Both tracks start afresh.
+  assert.equal(log.add(status(1.25, 0, 0, 0, [0, 0])), true);
+  assert.deepEqual(log.estimated, [{ x: 0, y: 0 }]);
+  assert.deepEqual(log.truth, [{ x: 0, y: 0 }]);
+  assert.equal(log.frames, 2);
+  log.add(status(1.3, 1, 0, 1));
+  // The mission time going back, though the distance did not (a restart that already drove).
+  assert.equal(log.add(status(0.5, 2, 0, 2)), true);
+  assert.deepEqual(log.estimated, [{ x: 2, y: 0 }]);
+  // A missing pose leaves the track as it is.
+  assert.equal(log.add({ mission_time_s: 0.6 }), false);
+  assert.equal(log.estimated.length, 1);
+  log.clear();
+  assert.deepEqual([log.estimated, log.truth], [[], []]);
+  // A long track is thinned to half, its first and last points kept.
+  const small = new TrackLog({ minStep: 0, maxPoints: 4 });
+  for (let i = 0; i <= 4; i += 1) small.add(status(i, i, 0, i));
+  assert.deepEqual(small.estimated.map((p) => p.x), [0, 2, 4]);
+});
+
+test('the mission\'s waypoints and target on the map', () => {
+  const goto = { id: 2, kind: 'goto', state: 'running', leg: 1, waypoints: [[2, 0], [2, 2], [null, 1]] };
+  assert.deepEqual(missionWaypoints(goto), [{ x: 2, y: 0 }, { x: 2, y: 2 }]);
+  assert.deepEqual(missionTarget(goto), { x: 2, y: 2 }, 'goto: the waypoint of the leg');
+  assert.deepEqual(missionTarget({ ...goto, kind: 'move', waypoints: [[0.3, 0]] }), { x: 0.3, y: 0 });
+  assert.equal(missionTarget({ ...goto, kind: 'turn', waypoints: [] }), null);
+  assert.equal(missionTarget({ ...goto, state: 'reached' }), null, 'no target once reached');
+  assert.deepEqual(missionWaypoints(undefined), []);
+});
+
+test('mission messages from the form, and what it refuses', () => {
+  const turn = missionMessage('turn', '90');
+  assert.equal(turn.message.kind, 'turn');
+  close(turn.message.angle_rad, Math.PI / 2, 1e-15, '90° in radians');
+  close(missionMessage('turn', '-45').message.angle_rad, -Math.PI / 4, 1e-15, '−45°: clockwise');
+  assert.deepEqual(missionMessage('move', '-0.3'), { message: { type: 'mission', kind: 'move', distance_m: -0.3 } });
+  assert.deepEqual(missionMessage('goto', '2,0; 2,2'), {
+    message: { type: 'mission', kind: 'goto', waypoints: [{ x_m: 2, y_m: 0 }, { x_m: 2, y_m: 2 }] },
+  });
+  assert.equal(missionMessage('turn', '').error, 'turn: empty; type a number in °');
+  assert.equal(missionMessage('turn', 'left').error, 'turn: "left" is not a number (°)');
+  assert.equal(missionMessage('turn', '800').error, 'turn: 800 is out of range; allowed −720..720 °');
+  close(missionMessage('turn', '-720').message.angle_rad, -4 * Math.PI, 1e-14, 'two turns clockwise');
+  assert.equal(missionMessage('move', '0').error, 'move: 0 m does nothing');
+  assert.equal(missionMessage('move', 'NaN').error, 'move: "NaN" is not a number (m)');
+  assert.equal(missionMessage('move', '-101').error, 'move: -101 is out of range; allowed −100..100 m');
+  assert.match(missionMessage('goto', '').error, /^go to: no waypoints/);
+  assert.match(missionMessage('goto', '1;2').error, /^go to: waypoint 1: "1" is not x,y/);
+});
+
+test('while a mission runs and the sticks rest, a heartbeat at 10 Hz replaces the reading', () => {
+  const sends = (state) => [0, 1, 2, 3].map((tick) => inputToSend({ ...state, tick }));
+  assert.deepEqual(sends({ missionActive: false, neutral: true, stopLatched: false }),
+    ['gamepad', 'gamepad', 'gamepad', 'gamepad'], 'no mission: the reading at 20 Hz');
+  assert.deepEqual(sends({ missionActive: true, neutral: true, stopLatched: false }),
+    ['heartbeat', 'nothing', 'heartbeat', 'nothing'], 'every other 50 ms tick: 10 Hz');
+  assert.deepEqual(sends({ missionActive: true, neutral: false, stopLatched: false }),
+    ['gamepad', 'gamepad', 'gamepad', 'gamepad'], 'a pushed stick takes over');
+  assert.deepEqual(sends({ missionActive: true, neutral: true, stopLatched: true }),
+    ['gamepad', 'gamepad', 'gamepad', 'gamepad'], 'after STOP: the neutral reading');
+});
+
+test('a mission counts as running from its sending until the status shows how it went', () => {
+  const watch = new MissionWatch();
+  const idle = { id: 3, kind: 'move', state: 'reached' };
+  assert.equal(watch.active(idle, 0), false);
+  watch.sent(3, 1000);
+  assert.equal(watch.active(idle, 1050), true, 'sent, not yet in the status');
+  assert.equal(watch.active({ ...idle, id: 4, state: 'running' }, 1100), true);
+  assert.equal(watch.active({ ...idle, id: 4, state: 'reached' }, 1200), false, 'reached');
+  watch.sent(4, 2000);
+  assert.equal(watch.active({ ...idle, id: 5, state: 'aborted' }, 2050), false, 'refused or aborted at once');
+  watch.sent(5, 3000);
+  assert.equal(watch.active(undefined, 3000 + PENDING_MS - 1), true);
+  assert.equal(watch.active(undefined, 3000 + PENDING_MS), false, 'a server without missions never shows it');
+  watch.sent(5, 4000);
+  watch.cancel();
+  assert.equal(watch.active(undefined, 4001), false, 'Stop mission');
+});
+
+test('the mission\'s status in one line', () => {
+  assert.match(missionSummary(undefined), /^no mission support/);
+  assert.equal(missionSummary({ id: 0, kind: 'none', state: 'idle' }), 'no mission yet');
+  assert.equal(missionSummary({
+    id: 3, kind: 'goto', state: 'running', reason: '', progress: 0.42, leg: 1,
+    waypoints: [[2, 0], [2, 2]], target_heading_rad: 1.57, remaining_m: 1.2, remaining_rad: null,
+  }), '#3 goto · running · leg 2 of 2 · 42 % · 1.20 m to go');
+  assert.equal(missionSummary({
+    id: 4, kind: 'turn', state: 'running', progress: 0.5, leg: 0, waypoints: [],
+    remaining_m: null, remaining_rad: Math.PI / 4,
+  }), '#4 turn · running · 50 % · 45.0° to turn');
+  assert.equal(missionSummary({
+    id: 5, kind: 'move', state: 'aborted', reason: 'the operator fell silent for 0.5 s', progress: 0.1,
+    leg: 0, waypoints: [[1, 0]], remaining_m: 0.9,
+  }), '#5 move · aborted · 10 %');
+  assert.equal(missionSummary({
+    id: 6, kind: 'goto', state: 'reached', progress: 1, leg: 1, waypoints: [[1, 0], [1, 1]],
+    remaining_m: null, remaining_rad: null, corrections: 1,
+  }), '#6 goto · reached · leg 2 of 2 · 100 % · 1 correction');
 });
