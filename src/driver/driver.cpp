@@ -38,6 +38,9 @@ Driver::Driver(const Params& params, std::optional<JointMemory> kept)
       stuck_({params.safety.stuck_time_s, params.safety.stuck_min_command_radps,
               params.safety.stuck_turning_share, params.safety.stuck_min_yaw_rate_radps}),
       missions_(params),
+      // An anchor of the null's drift: a second of standing (64 readings of (3.4)).
+      null_drift_(params.sensors.gyro_radps_per_count,
+                  static_cast<std::size_t>(std::ceil(1.0 / params.cycle.period_s))),
       runtime_(runtime_settings_from(params)),
       kept_(std::move(kept)) {
   validate(runtime_);
@@ -141,7 +144,14 @@ void Driver::take_responses(const CycleResponses& r) {
               std::abs(motors_.sample().velocity_radps[i]) < kStillSpeedRadps;
     }
     const bool all_zero = std::all_of(duty_.begin(), duty_.end(), [](double d) { return d == 0.0; });
+    const double null_used = sensors_.state().gyro_null_counts;  // y^k, what (3.4) converts with
     const tracking::SensorState& s = sensors_.update(*r.measurement, still, all_zero);
+    // The null's drift over a leg, once the odometry runs (update_pose).
+    if (startup_.phase() == StartupPhase::kDone) {
+      heading_correction_rad_ += null_drift_.update(
+          status_.mission_time_s, status_.cycle_time_s > 0.0 ? status_.cycle_time_s : params_->cycle.period_s,
+          r.measurement->yaw, null_used, still);
+    }
     status_.supply_v = s.supply_v;
     status_.reference_supply_v = s.reference_supply_v;
     status_.yaw_rate_radps = s.yaw_rate_radps;
@@ -367,7 +377,12 @@ void Driver::update_pose(double period_s) {
   in.right_load_radps = right.load_radps;
   in.left_no_load_radps = left.no_load_velocity_radps;
   in.right_no_load_radps = right.no_load_velocity_radps;
-  status_.pose = pose_.update(in);
+  pose_.update(in);
+  if (heading_correction_rad_ != 0.0) {
+    pose_.correct_heading(heading_correction_rad_);
+    heading_correction_rad_ = 0.0;
+  }
+  status_.pose = pose_.pose();
 }
 
 // The failsafes that need an estimate: each latches a fault (and so stops the motors) as a silent

@@ -35,6 +35,7 @@
 #include "driver/motion_controller.hpp"
 #include "driver/operator_channel.hpp"
 #include "driver/startup.hpp"
+#include "core/estimation/null_drift.hpp"
 #include "core/navigation/mission.hpp"
 #include "driver/status.hpp"
 
@@ -88,6 +89,8 @@ class Driver {
   estimation::TipOverMonitor tip_over_;
   estimation::StuckMonitor stuck_;
   navigation::MissionRunner missions_;
+  estimation::NullDriftCorrection null_drift_;
+  double heading_correction_rad_ = 0.0;  // from this cycle's gyro reading, for update_pose
   std::uint64_t attitude_readings_ = 0;  // µ8's readings the tip-over monitor has seen
   RuntimeSettings runtime_;
   DriverStatus status_;

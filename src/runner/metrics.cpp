@@ -192,6 +192,11 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
 // Each mission counts once when it starts (a new id) and once when it ends (reached, aborted).
 void Metrics::observe_missions(const navigation::MissionStatus& m) {
   if (m.id != last_mission_id_) {
+    // A mission replaced by the next one never shows its end: it was aborted.
+    if (last_mission_state_ == navigation::MissionState::kRunning &&
+        m.kind != navigation::MissionKind::kNone) {
+      ++missions_aborted_;
+    }
     last_mission_id_ = m.id;
     last_mission_state_ = navigation::MissionState::kIdle;
     if (m.id != 0) ++missions_started_;  // 0: a restarted driver, no mission yet

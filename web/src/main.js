@@ -1,7 +1,7 @@
 // The console: connects to the link server, shows its status, and while it holds control sends
 // the operator's gamepad (or keyboard) reading at 20 Hz, continuously — the driver stops the
 // rover after 0.5 s without input (docs/operator-protocol.md, "Control"). While a mission runs
-// and the reading is neutral it sends a heartbeat at 10 Hz instead (mission.js).
+// and the reading is neutral it sends a heartbeat at 20 Hz instead (mission.js).
 
 import './style.css';
 import { Link, websocketUrl, exchangeToken, addressWithoutToken } from './link.js';
@@ -192,7 +192,7 @@ setInterval(() => {
     else if (what === 'heartbeat') link.sendInput({ type: 'heartbeat' });
     sending = stopLatched ? 'neutral: STOPPED, let go of every stick and key to drive again'
       : what === 'gamepad' ? 'the reading at 20 Hz'
-        : 'heartbeat at 10 Hz: the mission drives (push a stick to take over)';
+        : 'heartbeat at 20 Hz: the mission drives (push a stick to take over)';
   } else if (link.inControl) {
     sending = 'nothing: page hidden, the rover stops';
   }

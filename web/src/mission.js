@@ -3,7 +3,7 @@
 //
 // A running mission needs operator input like the sticks do: the driver aborts it after 0.5 s
 // without any. While one runs and the operator's reading is neutral the console sends
-// `heartbeat` at 10 Hz instead of the neutral gamepad reading (inputToSend); a stick pushed sends
+// `heartbeat` at 20 Hz instead of the neutral gamepad reading (inputToSend); a stick pushed sends
 // the gamepad again, which takes over (the driver aborts the mission).
 
 import { control, element } from './dom.js';
@@ -72,14 +72,15 @@ export function missionMessage(kind, text) {
 
 /**
  * What the 20 Hz sender sends in tick `tick`: the gamepad reading, or — while a mission runs and
- * the reading is neutral (no STOP latched) — a heartbeat on every other tick (10 Hz) and nothing
- * between.
+ * the reading is neutral (no STOP latched) — a heartbeat on every tick (20 Hz: ten chances inside
+ * the driver's 0.5 s timeout, which a busy browser's timers can stretch).
  * @param {{ missionActive: boolean, neutral: boolean, stopLatched: boolean, tick: number }} state
  * @returns {'gamepad' | 'heartbeat' | 'nothing'}
  */
 export function inputToSend({ missionActive, neutral, stopLatched, tick }) {
+  void tick;
   if (!missionActive || !neutral || stopLatched) return 'gamepad';
-  return tick % 2 === 0 ? 'heartbeat' : 'nothing';
+  return 'heartbeat';
 }
 
 // Whether a mission runs: the status says so, or one was sent within PENDING_MS and the status

@@ -284,12 +284,12 @@ test('mission messages from the form, and what it refuses', () => {
   assert.match(missionMessage('goto', '1;2').error, /^go to: waypoint 1: "1" is not x,y/);
 });
 
-test('while a mission runs and the sticks rest, a heartbeat at 10 Hz replaces the reading', () => {
+test('while a mission runs and the sticks rest, a heartbeat at 20 Hz replaces the reading', () => {
   const sends = (state) => [0, 1, 2, 3].map((tick) => inputToSend({ ...state, tick }));
   assert.deepEqual(sends({ missionActive: false, neutral: true, stopLatched: false }),
     ['gamepad', 'gamepad', 'gamepad', 'gamepad'], 'no mission: the reading at 20 Hz');
   assert.deepEqual(sends({ missionActive: true, neutral: true, stopLatched: false }),
-    ['heartbeat', 'nothing', 'heartbeat', 'nothing'], 'every other 50 ms tick: 10 Hz');
+    ['heartbeat', 'heartbeat', 'heartbeat', 'heartbeat'], 'every 50 ms tick: 20 Hz');
   assert.deepEqual(sends({ missionActive: true, neutral: false, stopLatched: false }),
     ['gamepad', 'gamepad', 'gamepad', 'gamepad'], 'a pushed stick takes over');
   assert.deepEqual(sends({ missionActive: true, neutral: true, stopLatched: true }),

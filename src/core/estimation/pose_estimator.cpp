@@ -55,6 +55,11 @@ PoseEstimator::PoseEstimator(double wheel_radius_m, PoseNoise noise)
 
 void PoseEstimator::reset() { pose_ = Pose{}; }
 
+void PoseEstimator::correct_heading(double delta_rad) {
+  checks::law::require_finite(delta_rad, "PoseEstimator::correct_heading", "delta_rad");
+  pose_.heading_rad += delta_rad;
+}
+
 const Pose& PoseEstimator::update(const OdometryInput& in) {
   constexpr std::string_view kLaw = "PoseEstimator::update";
   checks::law::require_finite(in.period_s, kLaw, "period_s");

@@ -14,6 +14,8 @@
 //                                          horizontal with the slope σ of chapter 6.2.1
 //   Δψ = ω·h
 //   x ← x + Δs·cos(ψ + Δψ/2),  y ← y + Δs·sin(ψ + Δψ/2),  ψ ← ψ + Δψ          (midpoint rule)
+// The gyro null's drift over a leg in motion is taken back out of ψ when the rover stands again
+// (correct_heading, null_drift.hpp: a zero-velocity update).
 // Skid steering turns the rover by dragging wheels sideways, so the wheels' difference says
 // little about the heading (the thesis: odometry "meaningless … in particular when the robot is
 // turning"); the gyro gives it. The wheels give the distance only where they roll.
@@ -76,6 +78,10 @@ class PoseEstimator {
 
   // Back to the origin with no uncertainty: the odometry frame starts here.
   void reset();
+
+  // Adds Δψ to the heading: the gyro null's drift over the last leg, measured when the rover
+  // stands again (null_drift.hpp). Throws std::invalid_argument on a non-finite Δψ.
+  void correct_heading(double delta_rad);
 
   const Pose& pose() const { return pose_; }
 
