@@ -49,16 +49,6 @@ Json joint_bounds_json(const driver::JointBoundsStatus& b) {
           {"rear_max_rad", b.rear_max_rad}};
 }
 
-Json pose_json(const estimation::Pose& p) {
-  return {{"x_m", p.x_m},
-          {"y_m", p.y_m},
-          {"heading_rad", p.heading_rad},
-          {"speed_mps", p.speed_mps},
-          {"yaw_rate_radps", p.yaw_rate_radps},
-          {"distance_m", p.distance_m},
-          {"position_sigma_m", p.position_sigma_m()},
-          {"heading_sigma_rad", p.heading_sigma_rad()}};
-}
 
 Json optional_number(const std::optional<double>& v) { return v ? Json(*v) : Json(); }
 
@@ -79,6 +69,17 @@ Json mission_json(const navigation::MissionStatus& m) {
 }
 
 }  // namespace
+
+Json pose_json(const estimation::Pose& p) {
+  return {{"x_m", p.x_m},
+          {"y_m", p.y_m},
+          {"heading_rad", p.heading_rad},
+          {"speed_mps", p.speed_mps},
+          {"yaw_rate_radps", p.yaw_rate_radps},
+          {"distance_m", p.distance_m},
+          {"position_sigma_m", p.position_sigma_m()},
+          {"heading_sigma_rad", p.heading_sigma_rad()}};
+}
 
 Json status_json(const driver::DriverStatus& s, const Json& truth) {
   if (!truth.is_null() && !truth.is_object()) {

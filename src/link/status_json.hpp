@@ -21,6 +21,10 @@ namespace marsokhod::link {
 nlohmann::json status_json(const driver::DriverStatus& status,
                            const nlohmann::json& truth = nullptr);
 
+// The status' `pose` object (the dead reckoning, its keys in docs/operator-protocol.md): also the
+// recordings' /pose/estimate channel.
+nlohmann::json pose_json(const estimation::Pose& pose);
+
 // The simulated rover's ground truth for the 3-D view (docs/console.md lists the keys it reads):
 // position_m, roll_pitch_yaw_rad, velocity_mps, joint_angle_rad (8, motor order),
 // wheel_angle_rad (6), wheel_position_m (6 × [x, y, z]), wheel_slip_mps, supply_v, computer_on;

@@ -98,17 +98,6 @@ Json joint_states_json(std::int64_t time_us, const driver::DriverStatus& s) {
           {"duty", duty}};
 }
 
-Json pose_estimate_json(const estimation::Pose& p) {
-  return {{"x_m", p.x_m},
-          {"y_m", p.y_m},
-          {"heading_rad", p.heading_rad},
-          {"speed_mps", p.speed_mps},
-          {"yaw_rate_radps", p.yaw_rate_radps},
-          {"distance_m", p.distance_m},
-          {"position_sigma_m", p.position_sigma_m()},
-          {"heading_sigma_rad", p.heading_sigma_rad()}};
-}
-
 }  // namespace
 
 Json json_schema_of(const Json& value) {
@@ -260,7 +249,7 @@ void McapRecording::record(const McapCycle& c) {
               {{"position", {{"x", s.pose.x_m}, {"y", s.pose.y_m}, {"z", 0.0}}},
                {"orientation", quaternion(0.0, 0.0, s.pose.heading_rad)}}}},
             "foxglove.PoseInFrame");
-    publish("/pose/estimate", c.time_us, pose_estimate_json(s.pose));
+    publish("/pose/estimate", c.time_us, link::pose_json(s.pose));
   }
   if (c.true_pose) {
     const TruePose& p = *c.true_pose;
