@@ -6,8 +6,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <vector>
 
+#include "core/estimation/failsafes.hpp"
+#include "core/estimation/null_drift.hpp"
+#include "core/estimation/pose_estimator.hpp"
 #include "driver/driver.hpp"
 #include "scripted_rover.hpp"
 
@@ -50,6 +54,43 @@ void BM_DriverStep(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_DriverStep)->UseManualTime()->Iterations(1)->Unit(benchmark::kMicrosecond);
+
+// What issue #15 added to every cycle: the dead reckoning (pose_estimator.hpp), the null drift's
+// correction (null_drift.hpp) and the two failsafes (failsafes.hpp), fed a turning drive whose
+// inputs change every cycle.
+void BM_EstimationCycle(benchmark::State& state) {
+  estimation::PoseEstimator pose(0.125);
+  estimation::TipOverMonitor tip_over;
+  estimation::StuckMonitor stuck;
+  estimation::NullDriftCorrection null_drift(0.0170, 64);
+  estimation::OdometryInput odometry;
+  odometry.period_s = 0.0156;
+  estimation::StuckInput wheels;
+  wheels.period_s = 0.0156;
+  wheels.driving = true;
+  wheels.motion_asked = true;
+  std::array<double, 3> accel{0.3, -0.2, -9.8};
+  double k = 0.0;
+  for (auto _ : state) {
+    k += 1.0;
+    const double wobble = 0.01 * std::sin(k);
+    odometry.yaw_rate_radps = 0.2 + wobble;
+    odometry.left_angle_rad += (1.0 + wobble) * odometry.period_s;
+    odometry.right_angle_rad += (1.2 - wobble) * odometry.period_s;
+    odometry.left_no_load_radps = odometry.right_no_load_radps = 1.2;
+    odometry.left_load_radps = odometry.right_load_radps = -0.1;
+    wheels.no_load_radps = {1.2, 1.2};
+    wheels.velocity_radps = {1.0 + wobble, 1.2 - wobble};
+    accel[0] = 0.3 + wobble;
+    benchmark::DoNotOptimize(pose.update(odometry));
+    benchmark::DoNotOptimize(tip_over.update(accel, 0.0156));
+    benchmark::DoNotOptimize(stuck.update(wheels));
+    // Standing and moving in turns of 2 s, so that anchors form and legs are corrected.
+    const bool still = std::fmod(k, 256.0) < 128.0;
+    benchmark::DoNotOptimize(null_drift.update(k * 0.0156, 0.0156, 505.0 + wobble, 505.0, still));
+  }
+}
+BENCHMARK(BM_EstimationCycle)->Unit(benchmark::kNanosecond);
 
 }  // namespace
 }  // namespace marsokhod::driver

@@ -146,12 +146,14 @@ void Driver::take_responses(const CycleResponses& r) {
     const bool all_zero = std::all_of(duty_.begin(), duty_.end(), [](double d) { return d == 0.0; });
     const double null_used = sensors_.state().gyro_null_counts;  // y^k, what (3.4) converts with
     const tracking::SensorState& s = sensors_.update(*r.measurement, still, all_zero);
-    // The null's drift over a leg, once the odometry runs (update_pose).
-    if (startup_.phase() == StartupPhase::kDone) {
-      heading_correction_rad_ += null_drift_.update(
-          status_.mission_time_s, status_.cycle_time_s > 0.0 ? status_.cycle_time_s : params_->cycle.period_s,
-          r.measurement->yaw, null_used, still);
-    }
+    // The null's drift over a leg, from the first cycle: the start-up's standing anchors the
+    // first leg; update_pose begins the leg when the odometry starts.
+    const estimation::PoseCorrection c = null_drift_.update(
+        status_.mission_time_s, status_.cycle_time_s > 0.0 ? status_.cycle_time_s : params_->cycle.period_s,
+        r.measurement->yaw, null_used, still);
+    pose_correction_.heading_rad += c.heading_rad;
+    pose_correction_.x_m += c.x_m;
+    pose_correction_.y_m += c.y_m;
     status_.supply_v = s.supply_v;
     status_.reference_supply_v = s.reference_supply_v;
     status_.yaw_rate_radps = s.yaw_rate_radps;
@@ -334,7 +336,8 @@ void Driver::update_mission(double time_s) {
     return std::nullopt;
   };
   if (auto request = operator_.take_mission()) {
-    missions_.start(*request, status_.pose, time_s);  // checked by the operator channel
+    missions_.start(*request, status_.pose, time_s,  // checked by the operator channel
+                    null_drift_.standing_s());
   } else if (operator_.velocity_in_force(time_s)) {
     if (auto reason = why_not()) {
       missions_.abort(*reason, time_s);  // starts again when the velocity is heeded again
@@ -365,22 +368,30 @@ void Driver::update_mission(double time_s) {
 void Driver::update_pose(double period_s) {
   if (startup_.phase() != StartupPhase::kDone) return;
   if (!motors_.motor(kCenterLeft).started() || !motors_.motor(kCenterRight).started()) return;
+  if (!pose_started_) {
+    pose_started_ = true;
+    null_drift_.begin_leg();      // the leg starts at the odometry's origin
+    pose_correction_ = {};  // what the start-up's motion gained belongs to no pose
+  }
   const MotorStatus& left = status_.motors[kCenterLeft];
   const MotorStatus& right = status_.motors[kCenterRight];
   estimation::OdometryInput in;
   in.period_s = period_s;
   in.yaw_rate_radps = status_.yaw_rate_radps;
   in.slope_rad = status_.slope_rad;
-  in.left_velocity_radps = left.velocity_radps;
-  in.right_velocity_radps = right.velocity_radps;
+  in.pitch_rad = status_.attitude.pitch_rad;
+  in.left_angle_rad = left.shaft_position_rad;
+  in.right_angle_rad = right.shaft_position_rad;
   in.left_load_radps = left.load_radps;
   in.right_load_radps = right.load_radps;
   in.left_no_load_radps = left.no_load_velocity_radps;
   in.right_no_load_radps = right.no_load_velocity_radps;
-  pose_.update(in);
-  if (heading_correction_rad_ != 0.0) {
-    pose_.correct_heading(heading_correction_rad_);
-    heading_correction_rad_ = 0.0;
+  const estimation::Pose& p = pose_.update(in);
+  // The step just taken, along its midpoint heading, for the position's share of the drift.
+  null_drift_.add_motion(p.speed_mps * period_s, p.heading_rad - 0.5 * p.yaw_rate_radps * period_s);
+  if (pose_correction_ != estimation::PoseCorrection{}) {
+    pose_.correct(pose_correction_.heading_rad, pose_correction_.x_m, pose_correction_.y_m);
+    pose_correction_ = {};
   }
   status_.pose = pose_.pose();
 }

@@ -90,7 +90,8 @@ class Driver {
   estimation::StuckMonitor stuck_;
   navigation::MissionRunner missions_;
   estimation::NullDriftCorrection null_drift_;
-  double heading_correction_rad_ = 0.0;  // from this cycle's gyro reading, for update_pose
+  estimation::PoseCorrection pose_correction_;  // from this cycle's gyro reading, for update_pose
+  bool pose_started_ = false;            // update_pose has begun the odometry
   std::uint64_t attitude_readings_ = 0;  // µ8's readings the tip-over monitor has seen
   RuntimeSettings runtime_;
   DriverStatus status_;

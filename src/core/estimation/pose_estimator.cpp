@@ -53,11 +53,19 @@ PoseEstimator::PoseEstimator(double wheel_radius_m, PoseNoise noise)
   }
 }
 
-void PoseEstimator::reset() { pose_ = Pose{}; }
+void PoseEstimator::reset() {
+  pose_ = Pose{};
+  last_angles_rad_.reset();
+}
 
-void PoseEstimator::correct_heading(double delta_rad) {
-  checks::law::require_finite(delta_rad, "PoseEstimator::correct_heading", "delta_rad");
-  pose_.heading_rad += delta_rad;
+void PoseEstimator::correct(double heading_rad, double x_m, double y_m) {
+  constexpr std::string_view kLaw = "PoseEstimator::correct";
+  checks::law::require_finite(heading_rad, kLaw, "heading_rad");
+  checks::law::require_finite(x_m, kLaw, "x_m");
+  checks::law::require_finite(y_m, kLaw, "y_m");
+  pose_.heading_rad += heading_rad;
+  pose_.x_m += x_m;
+  pose_.y_m += y_m;
 }
 
 const Pose& PoseEstimator::update(const OdometryInput& in) {
@@ -65,8 +73,9 @@ const Pose& PoseEstimator::update(const OdometryInput& in) {
   checks::law::require_finite(in.period_s, kLaw, "period_s");
   checks::law::require_finite(in.yaw_rate_radps, kLaw, "yaw_rate_radps");
   checks::law::require_finite(in.slope_rad, kLaw, "slope_rad");
-  checks::law::require_finite(in.left_velocity_radps, kLaw, "left_velocity_radps");
-  checks::law::require_finite(in.right_velocity_radps, kLaw, "right_velocity_radps");
+  checks::law::require_finite(in.pitch_rad, kLaw, "pitch_rad");
+  checks::law::require_finite(in.left_angle_rad, kLaw, "left_angle_rad");
+  checks::law::require_finite(in.right_angle_rad, kLaw, "right_angle_rad");
   checks::law::require_finite(in.left_load_radps, kLaw, "left_load_radps");
   checks::law::require_finite(in.right_load_radps, kLaw, "right_load_radps");
   checks::law::require_finite(in.left_no_load_radps, kLaw, "left_no_load_radps");
@@ -76,8 +85,11 @@ const Pose& PoseEstimator::update(const OdometryInput& in) {
                                 std::to_string(in.period_s));
   }
   const double h = in.period_s;
-  const double ds = wheel_radius_m_ * 0.5 * (in.left_velocity_radps + in.right_velocity_radps) *
-                    h * std::cos(in.slope_rad);
+  const std::array<double, 3> angles{in.pitch_rad, in.left_angle_rad, in.right_angle_rad};
+  const std::array<double, 3> last = last_angles_rad_.value_or(angles);
+  last_angles_rad_ = angles;
+  const double wheels = 0.5 * ((angles[1] - last[1]) + (angles[2] - last[2]));
+  const double ds = wheel_radius_m_ * (wheels + angles[0] - last[0]) * std::cos(in.slope_rad);
   const double dpsi = in.yaw_rate_radps * h;
   const double mid = pose_.heading_rad + 0.5 * dpsi;
   const double c = std::cos(mid);

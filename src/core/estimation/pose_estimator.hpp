@@ -9,13 +9,21 @@
 // motion (the exterior axles move relative to it while a joint bends, (5.1)/(5.2)).
 //
 // Per cycle of period h, with the yaw rate ω (the gyro less its null (3.4)), the centre wheels'
-// measured velocities w_CL, w_CR (chapter 4.2) and the wheel radius r:
-//   Δs = r·(w_CL + w_CR)/2 · h · cos σ     the distance along the ground, projected to the
-//                                          horizontal with the slope σ of chapter 6.2.1
+// angles p̄_CL, p̄_CR from their encoders (chapter 3.2), the centre unit's pitch θ (+ nose down,
+// the accelerometer's mean gravity, failsafes.hpp) and the wheel radius r, Δ the change since
+// the last cycle:
+//   Δs = r·((Δp̄_CL + Δp̄_CR)/2 + Δθ) · cos σ     the distance along the ground, projected to
+//                                          the horizontal with the slope σ of chapter 6.2.1
+// The encoders' angles, not the velocities w of chapter 4.2 (a windowed estimate that lags
+// where the wheels reverse, as in wheel walking): the Δ add up to the angle turned, as
+// diff_drive_controller's position feedback does. Δθ: the encoders count the wheels' turn
+// against the centre unit, and when the unit pitches (a joint bending in wheel walking:
+// ±0.1 rad in rolking) the wheels turn over the ground by that as well. The Δθ add up to the
+// pitch's change since the pose began, so the accelerometer's noise does not gather.
 //   Δψ = ω·h
 //   x ← x + Δs·cos(ψ + Δψ/2),  y ← y + Δs·sin(ψ + Δψ/2),  ψ ← ψ + Δψ          (midpoint rule)
 // The gyro null's drift over a leg in motion is taken back out of ψ when the rover stands again
-// (correct_heading, null_drift.hpp: a zero-velocity update).
+// and the position's drift with it (correct, null_drift.hpp: a zero-velocity update).
 // Skid steering turns the rover by dragging wheels sideways, so the wheels' difference says
 // little about the heading (the thesis: odometry "meaningless … in particular when the robot is
 // turning"); the gyro gives it. The wheels give the distance only where they roll.
@@ -33,6 +41,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 namespace marsokhod::estimation {
 
@@ -46,8 +55,9 @@ struct OdometryInput {
   double period_s = 0.0;                  // h
   double yaw_rate_radps = 0.0;            // ω, the gyro less its null (3.4)
   double slope_rad = 0.0;                 // σ of chapter 6.2.1
-  double left_velocity_radps = 0.0;       // w_CL, measured
-  double right_velocity_radps = 0.0;      // w_CR
+  double pitch_rad = 0.0;                 // θ of the centre unit, + nose down
+  double left_angle_rad = 0.0;            // p̄_CL, the encoder's wheel angle
+  double right_angle_rad = 0.0;           // p̄_CR
   double left_load_radps = 0.0;           // l_CL = w − ν (Definition 4.9)
   double right_load_radps = 0.0;          // l_CR
   double left_no_load_radps = 0.0;        // ν_CL of (4.4)
@@ -79,9 +89,11 @@ class PoseEstimator {
   // Back to the origin with no uncertainty: the odometry frame starts here.
   void reset();
 
-  // Adds Δψ to the heading: the gyro null's drift over the last leg, measured when the rover
-  // stands again (null_drift.hpp). Throws std::invalid_argument on a non-finite Δψ.
-  void correct_heading(double delta_rad);
+  // Adds Δψ to the heading and (Δx, Δy) to the position: the gyro null's drift over the last
+  // leg and where it took the dead reckoning, measured when the rover stands again
+  // (null_drift.hpp). Throws std::invalid_argument on a non-finite argument; the pose is
+  // unchanged then.
+  void correct(double heading_rad, double x_m, double y_m);
 
   const Pose& pose() const { return pose_; }
 
@@ -89,6 +101,8 @@ class PoseEstimator {
   double wheel_radius_m_;
   PoseNoise noise_;
   Pose pose_;
+  // θ, p̄_CL, p̄_CR of the last update (none yet: no change).
+  std::optional<std::array<double, 3>> last_angles_rad_;
 };
 
 }  // namespace marsokhod::estimation

@@ -171,8 +171,11 @@ void MissionRunner::follow_velocity(double time_s) {
 }
 
 void MissionRunner::start(const MissionRequest& request, const estimation::Pose& pose,
-                          double time_s) {
+                          double time_s, double stood_s) {
   if (auto e = check_request(request)) throw std::invalid_argument(e->message);
+  if (!(std::isfinite(stood_s) && stood_s >= 0.0)) {
+    throw std::invalid_argument("MissionRunner::start: stood_s must be >= 0 s, got " + text(stood_s));
+  }
   abort("replaced by a new mission", time_s);
   const std::uint64_t id = status_.id + 1;
   status_ = MissionStatus{};
@@ -217,6 +220,13 @@ void MissionRunner::start(const MissionRequest& request, const estimation::Pose&
       break;
   }
   best_error_s_ = time_s;
+  if (stood_s < nav_.settle_s && (phase_ == Phase::kTurn || phase_ == Phase::kDrive)) {
+    first_phase_ = phase_;
+    phase_ = Phase::kStand;
+    settle_started_ = true;
+    settle_since_s_ = time_s;
+    still_since_s_ = time_s - stood_s;
+  }
 }
 
 // goto: the leg from the previous waypoint (or the start) to waypoint `leg`; turn towards it
@@ -413,6 +423,11 @@ DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s) 
   checks::law::require_finite(pose.speed_mps, kLaw, "speed_mps");
   checks::law::require_finite(pose.yaw_rate_radps, kLaw, "yaw_rate_radps");
   update_progress(pose);
+  if (phase_ == Phase::kStand) {
+    if (!stood_still(pose, time_s)) return {};
+    phase_ = first_phase_;
+    best_error_s_ = time_s;  // the no-progress time starts with the leg
+  }
   if (phase_ == Phase::kTurn) {
     const double e = target_heading_rad_ - pose.heading_rad;
     if (!turn_sign_) turn_sign_ = sign(e);
@@ -452,6 +467,16 @@ DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s) 
     }
   }
   // Settling: zero targets until the rover has stood still for settle_s (or max_settle_s).
+  if (stood_still(pose, time_s)) {
+    end_leg(pose, time_s);
+    if (running()) update_progress(pose);
+  }
+  return {};
+}
+
+// Zero targets meanwhile: true once the rover has stood still for settle_s since the standing
+// began (settle_started_), or max_settle_s passed.
+bool MissionRunner::stood_still(const estimation::Pose& pose, double time_s) {
   const double r = params_->geometry.wheel_radius_m;
   const bool still = std::abs(pose.yaw_rate_radps) < nav_.still_yaw_rate_radps &&
                      std::abs(pose.speed_mps) / r < nav_.still_yaw_rate_radps;
@@ -465,13 +490,8 @@ DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s) 
   } else if (!still_since_s_) {
     still_since_s_ = time_s;
   }
-  const bool settled = (still_since_s_ && time_s - *still_since_s_ >= nav_.settle_s) ||
-                       time_s - settle_since_s_ >= nav_.max_settle_s;
-  if (settled) {
-    end_leg(pose, time_s);
-    if (running()) update_progress(pose);
-  }
-  return {};
+  return (still_since_s_ && time_s - *still_since_s_ >= nav_.settle_s) ||
+         time_s - settle_since_s_ >= nav_.max_settle_s;
 }
 
 }  // namespace marsokhod::navigation

@@ -120,9 +120,12 @@ class MissionRunner {
   explicit MissionRunner(const Params& params);
 
   // Starts a mission from `pose` at time t; a running one is replaced (it ends "aborted:
-  // replaced by a new mission"). Throws std::invalid_argument (check_request's message) and
-  // changes nothing for a bad request.
-  void start(const MissionRequest& request, const estimation::Pose& pose, double time_s);
+  // replaced by a new mission"). The rover has stood still for stood_s before (the driver's
+  // judgement); a mission first stands until that makes settle_s, so that the gyro's null is
+  // measured before the first leg as after every other (core/estimation/null_drift.hpp). Throws
+  // std::invalid_argument (check_request's message) and changes nothing for a bad request.
+  void start(const MissionRequest& request, const estimation::Pose& pose, double time_s,
+             double stood_s);
   // The velocity stream: the first command after anything else starts a "velocity" mission;
   // the next ones continue it.
   void follow_velocity(double time_s);
@@ -139,7 +142,9 @@ class MissionRunner {
   const MissionStatus& status() const { return status_; }
 
  private:
-  enum class Phase { kTurn, kDrive, kSettle };
+  // kStand: before the first leg (first_phase_), until the rover has stood settle_s.
+  enum class Phase { kStand, kTurn, kDrive, kSettle };
+  bool stood_still(const estimation::Pose& pose, double time_s);
   void begin_leg(const estimation::Pose& pose);
   void begin_turn(double target_heading_rad);
   void begin_drive(const estimation::Pose& pose);
@@ -156,6 +161,7 @@ class MissionRunner {
   MissionRequest request_;
   Phase phase_ = Phase::kSettle;
   Phase settled_from_ = Phase::kDrive;
+  Phase first_phase_ = Phase::kDrive;
   // The leg: a line from `from` to `to` (move, goto), or a heading (turn).
   Waypoint from_{};
   Waypoint to_{};

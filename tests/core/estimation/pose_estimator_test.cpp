@@ -13,25 +13,41 @@ namespace {
 constexpr double kH = 0.0156;  // 64 Hz
 constexpr double kRadius = 0.125;
 
-// Centre wheels at w rad/s, the gyro at ω, for n cycles.
-const Pose& drive(PoseEstimator& e, double w, double omega, int n, double slope = 0.0,
+// Centre wheels at w rad/s, the gyro at ω, for n cycles: the encoders' angles go on from where
+// the last call left them. An estimator's first call begins with one cycle standing, the angles'
+// origin (the first update has no change to count).
+struct Odometer : PoseEstimator {
+  using PoseEstimator::PoseEstimator;
+  double angle_rad = 0.0;
+  bool begun = false;
+};
+
+const Pose& drive(Odometer& e, double w, double omega, int n, double slope = 0.0,
                   double load = 0.0) {
   OdometryInput in;
   in.period_s = kH;
+  if (!e.begun) {
+    e.begun = true;
+    e.update(in);
+  }
   in.yaw_rate_radps = omega;
   in.slope_rad = slope;
-  in.left_velocity_radps = w;
-  in.right_velocity_radps = w;
   in.left_no_load_radps = w;
   in.right_no_load_radps = w;
   in.left_load_radps = load;
   in.right_load_radps = load;
-  for (int k = 0; k < n; ++k) e.update(in);
+  double& angle = e.angle_rad;
+  for (int k = 0; k < n; ++k) {
+    angle += w * kH;
+    in.left_angle_rad = angle;
+    in.right_angle_rad = angle;
+    e.update(in);
+  }
   return e.pose();
 }
 
 TEST(PoseEstimator, AStraightRunCoversRTimesTheWheelAngle) {
-  PoseEstimator e(kRadius);
+  Odometer e(kRadius);
   const Pose& p = drive(e, 2.0, 0.0, 641);  // 10.0 s: 0.125 · 2 · 641 · 0.0156 = 2.5038 m
   EXPECT_NEAR(p.x_m, kRadius * 2.0 * 641 * kH, 1e-12);
   EXPECT_EQ(p.y_m, 0.0);
@@ -46,7 +62,7 @@ TEST(PoseEstimator, AStraightRunCoversRTimesTheWheelAngle) {
 
 TEST(PoseEstimator, AFullCircleClosesOnItselfWithTheHeadingTurnedOnce) {
   // v = 0.25 m/s, ω chosen so that 400 cycles make 2π: a regular 400-gon by the midpoint rule.
-  PoseEstimator e(kRadius);
+  Odometer e(kRadius);
   const double omega = 2.0 * std::numbers::pi / (400 * kH);
   const Pose& p = drive(e, 2.0, omega, 400);
   EXPECT_NEAR(p.heading_rad, 2.0 * std::numbers::pi, 1e-12);
@@ -55,7 +71,7 @@ TEST(PoseEstimator, AFullCircleClosesOnItselfWithTheHeadingTurnedOnce) {
   // A quarter circle ends at (R, R) turning left (y positive): R = v/ω for the arc; the midpoint
   // rule's steps of length Δs along the mid-heading make it R·(Δψ/2)/sin(Δψ/2) (Σ of a geometric
   // series of e^(i(k+½)Δψ)), 1.0000016·R here.
-  PoseEstimator q(kRadius);
+  Odometer q(kRadius);
   drive(q, 2.0, omega, 100);
   const double dpsi = omega * kH;
   const double radius = 0.25 / omega * (dpsi / 2.0) / std::sin(dpsi / 2.0);
@@ -64,26 +80,53 @@ TEST(PoseEstimator, AFullCircleClosesOnItselfWithTheHeadingTurnedOnce) {
 }
 
 TEST(PoseEstimator, OnASlopeTheDistanceIsProjectedToTheHorizontal) {
-  PoseEstimator e(kRadius);
+  Odometer e(kRadius);
   const Pose& p = drive(e, 2.0, 0.0, 641, 0.3);  // 17°
   EXPECT_NEAR(p.x_m, kRadius * 2.0 * 641 * kH * std::cos(0.3), 1e-12);
 }
 
+TEST(PoseEstimator, TheCentreUnitsPitchTurnsItsWheelsOverTheGround) {
+  // Wheel walking pitches the centre unit; the encoders count the wheels against it. With the
+  // shafts still and the unit pitching 0.1 rad nose down, the wheels rolled r·0.1 = 12.5 mm
+  // forward over the ground; pitching back brings the axle back (the Δθ add up to the change).
+  Odometer e(kRadius);
+  OdometryInput in;
+  in.period_s = kH;
+  e.update(in);  // the first pitch is where it starts: no change
+  for (int k = 1; k <= 50; ++k) {
+    in.pitch_rad = 0.1 * k / 50.0 + (k % 2 == 0 ? 0.003 : -0.003);  // with the sensor's noise
+    e.update(in);
+  }
+  EXPECT_NEAR(e.pose().x_m, kRadius * (0.1 + 0.003), 1e-12);
+  in.pitch_rad = 0.0;
+  e.update(in);
+  EXPECT_NEAR(e.pose().x_m, 0.0, 1e-12);
+  // A rover already pitched when the pose starts (or resets) does not jump.
+  PoseEstimator f(kRadius);
+  in.pitch_rad = 0.2;
+  f.update(in);
+  EXPECT_EQ(f.pose().x_m, 0.0);
+  f.reset();
+  in.pitch_rad = -0.2;
+  f.update(in);
+  EXPECT_EQ(f.pose().x_m, 0.0);
+}
+
 TEST(PoseEstimator, TheCovarianceGrowsAsRandomWalksOfTheDistanceAndTheTime) {
   // No gyro noise: along a straight line only P_xx grows, k_s²·L.
-  PoseEstimator e(kRadius, {0.02, 0.0, 0.0});
+  Odometer e(kRadius, {0.02, 0.0, 0.0});
   const Pose& p = drive(e, 2.0, 0.0, 641);
   EXPECT_NEAR(p.covariance[0], 0.02 * 0.02 * p.distance_m, 1e-12);
   EXPECT_NEAR(p.covariance[4], 0.0, 1e-15);
   EXPECT_NEAR(p.position_sigma_m(), 0.02 * std::sqrt(p.distance_m), 1e-12);
   // Wheels whose loads are as large as their commands (slipping): the distance counts twice.
-  PoseEstimator slipping(kRadius, {0.02, 0.0, 0.0});
+  Odometer slipping(kRadius, {0.02, 0.0, 0.0});
   const Pose& s = drive(slipping, 2.0, 0.0, 641, 0.0, -2.0);
   EXPECT_NEAR(s.covariance[0], 2.0 * 0.02 * 0.02 * s.distance_m, 1e-12);
   // At rest the heading's variance grows with time, σ_ω²·t, whatever the period.
-  PoseEstimator still(kRadius, {0.02, 0.005, 0.02});
-  drive(still, 0.0, 0.0, 641);
-  EXPECT_NEAR(still.pose().heading_sigma_rad(), 0.005 * std::sqrt(641 * kH), 1e-12);
+  Odometer still(kRadius, {0.02, 0.005, 0.02});
+  drive(still, 0.0, 0.0, 641);  // and the first call's cycle standing
+  EXPECT_NEAR(still.pose().heading_sigma_rad(), 0.005 * std::sqrt(642 * kH), 1e-12);
   EXPECT_EQ(still.pose().position_sigma_m(), 0.0);
   // A heading uncertain by σ_ψ spreads a straight run of L sideways by about L·σ_ψ.
   drive(still, 2.0, 0.0, 641);
@@ -93,7 +136,7 @@ TEST(PoseEstimator, TheCovarianceGrowsAsRandomWalksOfTheDistanceAndTheTime) {
 }
 
 TEST(PoseEstimator, BadInputIsRejectedAndTheEstimateKept) {
-  PoseEstimator e(kRadius);
+  Odometer e(kRadius);
   drive(e, 2.0, 0.1, 10);
   const Pose before = e.pose();
   OdometryInput in;

@@ -11,6 +11,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kH = 0.0156;  // the driver's cycle
+constexpr double kStood = 10.0;  // the rover stood long enough before the mission
 
 // A skid-steered unicycle behind the ramp (4.14) of the driver: v1 and v2 approach their targets
 // at μ rad/s², the body moves at r·v1 and turns at η·v2·r/(t/2) — η the share skidding leaves of
@@ -78,7 +79,7 @@ TEST(MissionRequest, BadRequestsNameTheirField) {
   MissionRequest ok{MissionKind::kGoto, 0.0, 0.0, {{1.0, 2.0}}};
   EXPECT_FALSE(check_request(ok));
   MissionRunner runner{Params{}};
-  EXPECT_THROW(runner.start(far, {}, 0.0), std::invalid_argument);
+  EXPECT_THROW(runner.start(far, {}, 0.0, kStood), std::invalid_argument);
   EXPECT_FALSE(runner.running());
 }
 
@@ -88,7 +89,7 @@ TEST(MissionRunner, TurnReachesItsHeadingWithinTheTolerance) {
     for (const double angle : {kPi / 2, -kPi / 4, 2 * kPi}) {
       MissionRunner runner(params);
       Plant plant{params, efficiency};
-      runner.start({MissionKind::kTurn, angle, 0.0, {}}, plant.pose, 0.0);
+      runner.start({MissionKind::kTurn, angle, 0.0, {}}, plant.pose, 0.0, kStood);
       run(runner, plant, 120.0);
       EXPECT_EQ(runner.status().state, MissionState::kReached) << efficiency << " " << angle;
       // The loop stops within the tolerance, 0.5°, plus what the ramp carries it on, at most
@@ -108,7 +109,7 @@ TEST(MissionRunner, MoveDrivesItsDistanceAlongTheStartHeading) {
     MissionRunner runner(params);
     Plant plant{params};
     plant.pose.heading_rad = 0.3;
-    runner.start({MissionKind::kMove, 0.0, d, {}}, plant.pose, 0.0);
+    runner.start({MissionKind::kMove, 0.0, d, {}}, plant.pose, 0.0, kStood);
     ASSERT_EQ(runner.status().waypoints.size(), 1U);
     EXPECT_NEAR(runner.status().waypoints[0].x_m, d * std::cos(0.3), 1e-12);
     const double took = run(runner, plant, 60.0);
@@ -125,11 +126,35 @@ TEST(MissionRunner, MoveDrivesItsDistanceAlongTheStartHeading) {
   }
 }
 
+TEST(MissionRunner, AMissionFirstStandsUntilTheRoverHasStoodSettleS) {
+  const Params params;
+  const double settle = params.navigation.settle_s;
+  for (const double stood : {0.0, settle - 0.5, settle}) {
+    MissionRunner runner(params);
+    Plant plant{params};
+    runner.start({MissionKind::kMove, 0.0, 1.0, {}}, plant.pose, 0.0, stood);
+    double t = 0.0, first_drive_s = -1.0;
+    while (runner.running() && t < 60.0) {
+      t += kH;
+      const DriveTargets targets = runner.update(plant.pose, t);
+      if (first_drive_s < 0.0 && targets.v1_radps != 0.0) first_drive_s = t;
+      plant.step(targets);
+    }
+    EXPECT_EQ(runner.status().state, MissionState::kReached) << stood;
+    // It drives once the standing before and in the mission make settle_s (one cycle after).
+    EXPECT_NEAR(first_drive_s, std::max(settle - stood, 0.0) + kH, kH + 1e-9) << stood;
+  }
+  MissionRunner runner(params);
+  EXPECT_THROW(runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 0.0, -1.0),
+               std::invalid_argument);
+  EXPECT_FALSE(runner.running());
+}
+
 TEST(MissionRunner, MoveHoldsItsLineAgainstADisturbance) {
   const Params params;
   MissionRunner runner(params);
   Plant plant{params};
-  runner.start({MissionKind::kMove, 0.0, 3.0, {}}, plant.pose, 0.0);
+  runner.start({MissionKind::kMove, 0.0, 3.0, {}}, plant.pose, 0.0, kStood);
   double t = 0.0;
   while (runner.running() && t < 60.0) {
     t += kH;
@@ -147,7 +172,7 @@ TEST(MissionRunner, GotoVisitsEveryWaypointInTurn) {
   MissionRunner runner(params);
   Plant plant{params};
   const std::vector<Waypoint> square{{2.0, 0.0}, {2.0, 2.0}, {0.0, 2.0}, {0.0, 0.0}};
-  runner.start({MissionKind::kGoto, 0.0, 0.0, square}, plant.pose, 0.0);
+  runner.start({MissionKind::kGoto, 0.0, 0.0, square}, plant.pose, 0.0, kStood);
   EXPECT_DOUBLE_EQ(runner.status().progress, 0.0);
   std::size_t leg = 0;
   double t = 0.0, closest_to_corner = 1e9;
@@ -171,7 +196,7 @@ TEST(MissionRunner, NoProgressAbortsWithTheReason) {
   const Params params;
   MissionRunner runner(params);
   estimation::Pose stuck;  // a rover that never moves
-  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, stuck, 0.0);
+  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, stuck, 0.0, kStood);
   double t = 0.0;
   DriveTargets last;
   while (runner.running() && t < 30.0) {
@@ -188,9 +213,9 @@ TEST(MissionRunner, NoProgressAbortsWithTheReason) {
 TEST(MissionRunner, AbortAndReplaceEndTheRunningMission) {
   const Params params;
   MissionRunner runner(params);
-  runner.start({MissionKind::kTurn, 1.0, 0.0, {}}, {}, 0.0);
+  runner.start({MissionKind::kTurn, 1.0, 0.0, {}}, {}, 0.0, kStood);
   EXPECT_EQ(runner.status().id, 1U);
-  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 1.0);
+  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 1.0, kStood);
   EXPECT_EQ(runner.status().id, 2U);
   EXPECT_EQ(runner.status().kind, MissionKind::kMove);
   runner.abort("the operator took over", 2.0);
@@ -207,7 +232,7 @@ TEST(MissionRunner, AbortAndReplaceEndTheRunningMission) {
 
 TEST(MissionRunner, NonFinitePoseIsRejected) {
   MissionRunner runner{Params{}};
-  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 0.0);
+  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 0.0, kStood);
   estimation::Pose bad;
   bad.x_m = std::nan("");
   EXPECT_THROW(runner.update(bad, 0.1), std::invalid_argument);
