@@ -47,11 +47,15 @@ AuthDecision ServerCore::check_token(std::string_view given, const std::string& 
 
 AuthDecision ServerCore::authorize_upgrade(std::string_view cookie_header,
                                            std::string_view authorization,
-                                           const std::string& address) {
+                                           const std::string& address,
+                                           std::optional<std::string_view> query_token) {
   if (const auto id = cookie_value(cookie_header, cookie_name()); id && sessions_.valid(*id)) {
     return {AuthDecision::Result::kAllowed, 0.0};
   }
-  return check_token(bearer_token(authorization).value_or(std::string_view{}), address);
+  if (const auto bearer = bearer_token(authorization); bearer || !query_token) {
+    return check_token(bearer.value_or(std::string_view{}), address);
+  }
+  return check_token(*query_token, address);
 }
 
 AuthDecision ServerCore::open_session(std::string_view authorization, const std::string& address,
