@@ -7,14 +7,11 @@
 #include "link/server_core.hpp"
 
 namespace marsokhod::link {
-namespace {
 
 double steady_now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
-
-}  // namespace
 
 bool ServerCore::host_allowed(std::string_view host) {
   if (link::host_allowed(host, policy_)) return true;

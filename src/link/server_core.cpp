@@ -203,8 +203,7 @@ void ServerCore::on_text(ClientId client, std::string_view text) {
   count(&ServerStats::messages_received);
   const auto it = clients_.find(client);
   if (it == clients_.end()) return;
-  const double now_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  const double now_s = steady_now_s();
   if (!it->second.messages.take(now_s)) {
     count(&ServerStats::rate_limited);
     return;

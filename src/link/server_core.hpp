@@ -38,6 +38,9 @@ class Connection {
 
 class WebSocketSession;
 
+// The steady clock in seconds: the rate limits' and back-offs' time.
+double steady_now_s();
+
 // What an authorisation check decided (HttpSession answers 401 or 429 for the refusals).
 struct AuthDecision {
   enum class Result { kAllowed, kWrongToken, kBackingOff } result = Result::kWrongToken;

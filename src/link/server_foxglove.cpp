@@ -17,18 +17,6 @@ namespace {
 using Json = nlohmann::json;
 using foxglove::StatusLevel;
 
-double steady_now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-template <typename... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <typename... F>
-Overloaded(F...) -> Overloaded<F...>;
-
 }  // namespace
 
 bool FoxgloveInterest::wants(const std::string& topic) const {
@@ -124,27 +112,27 @@ void ServerCore::on_foxglove_text(ClientId id, std::string_view text) {
     return;
   }
   if (options_.message_observer) options_.message_observer(id, text);
-  std::visit(Overloaded{
-                 [&](const foxglove::Subscribe& op) { subscribe(client, op); },
-                 [&](const foxglove::Unsubscribe& op) { unsubscribe(client, op); },
-                 [&](const foxglove::GetParameters& op) { get_parameters(client, op); },
-                 [&](const foxglove::SetParameters& op) { set_parameters(id, client, op); },
-                 [&](const foxglove::SubscribeParameterUpdates& op) {
-                   client.parameter_updates.insert(op.names.begin(), op.names.end());
-                   if (op.names.empty()) {
-                     for (const Json& p : foxglove::settings_parameters(settings_)) {
-                       client.parameter_updates.insert(p["name"].get<std::string>());
-                     }
-                   }
-                 },
-                 [&](const foxglove::UnsubscribeParameterUpdates& op) {
-                   for (const std::string& name : op.names) client.parameter_updates.erase(name);
-                 },
-                 [&](const foxglove::FoxgloveError& error) {
-                   send_foxglove_status(id, StatusLevel::kError, error.message);
-                 },
-             },
-             foxglove::parse_client_op(text));
+  const foxglove::ClientOp op = foxglove::parse_client_op(text);
+  if (const auto* subscribe_op = std::get_if<foxglove::Subscribe>(&op)) {
+    subscribe(client, *subscribe_op);
+  } else if (const auto* unsubscribe_op = std::get_if<foxglove::Unsubscribe>(&op)) {
+    unsubscribe(client, *unsubscribe_op);
+  } else if (const auto* get = std::get_if<foxglove::GetParameters>(&op)) {
+    get_parameters(client, *get);
+  } else if (const auto* set = std::get_if<foxglove::SetParameters>(&op)) {
+    set_parameters(id, client, *set);
+  } else if (const auto* updates = std::get_if<foxglove::SubscribeParameterUpdates>(&op)) {
+    client.parameter_updates.insert(updates->names.begin(), updates->names.end());
+    if (updates->names.empty()) {  // every parameter
+      for (const Json& p : foxglove::settings_parameters(settings_)) {
+        client.parameter_updates.insert(p["name"].get<std::string>());
+      }
+    }
+  } else if (const auto* no_updates = std::get_if<foxglove::UnsubscribeParameterUpdates>(&op)) {
+    for (const std::string& name : no_updates->names) client.parameter_updates.erase(name);
+  } else {
+    send_foxglove_status(id, StatusLevel::kError, std::get<foxglove::FoxgloveError>(op).message);
+  }
 }
 
 void ServerCore::subscribe(FoxgloveClient& client, const foxglove::Subscribe& op) {

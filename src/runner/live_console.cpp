@@ -59,10 +59,16 @@ void LiveConsole::publish(const driver::DriverStatus& status, const nlohmann::js
   server_->publish_status(link::status_json(status, truth));
   const link::FoxgloveInterest interest = server_->foxglove_interest();
   if (!interest.connected) return;
-  // The time message goes with every status, whether or not a channel is subscribed.
+  // The time message goes with every status, whether or not a channel is subscribed; the
+  // messages are built the first time (to advertise them) and then while someone subscribes.
+  const bool wanted = !status_channels_seen_ ||
+                      std::any_of(interest.subscribed.begin(), interest.subscribed.end(),
+                                  [](const std::string& topic) { return topic.rfind("/can/", 0) != 0; });
+  status_channels_seen_ = true;
   send_foxglove(interest,
-                status_channel_messages(std::llround(status.mission_time_s * 1e6), &status, truth,
-                                        true_pose),
+                wanted ? status_channel_messages(std::llround(status.mission_time_s * 1e6), &status,
+                                                 truth, true_pose)
+                       : std::vector<ChannelMessage>{},
                 status);
 }
 

@@ -65,6 +65,7 @@ class LiveConsole {
   std::uint64_t status_every_ = 1;
   std::optional<CanChannels> can_;
   std::set<std::string> seen_;  // topics handed to the server at least once
+  bool status_channels_seen_ = false;  // the status' channels built once (and so advertised)
   std::map<std::string, std::shared_ptr<const std::string>> schemas_;
 };
 

@@ -15,43 +15,59 @@
 namespace marsokhod::sim {
 namespace {
 
-using Quaternion = std::array<double, 4>;  // x, y, z, w
+// Composed with rotation matrices, independently of the library's quaternion arithmetic.
+using Matrix = std::array<std::array<double, 3>, 3>;
 
-Vec3 rotate(const Quaternion& q, const Vec3& v) {
-  // v' = v + 2w(u × v) + 2u × (u × v), u = (x, y, z)
-  const Vec3 u{q[0], q[1], q[2]};
-  const auto cross = [](const Vec3& a, const Vec3& b) {
-    return Vec3{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-  };
-  const Vec3 uv = cross(u, v);
-  const Vec3 uuv = cross(u, uv);
-  return {v[0] + 2 * (q[3] * uv[0] + uuv[0]), v[1] + 2 * (q[3] * uv[1] + uuv[1]),
-          v[2] + 2 * (q[3] * uv[2] + uuv[2])};
+Matrix matrix_of(const std::array<double, 4>& q) {  // (x, y, z, w), unit
+  const double x = q[0], y = q[1], z = q[2], w = q[3];
+  return {{{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+           {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+           {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}}};
 }
 
-Quaternion multiply(const Quaternion& a, const Quaternion& b) {
-  return {a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1],
-          a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
-          a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3],
-          a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
+Matrix times(const Matrix& a, const Matrix& b) {
+  Matrix c{};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      for (int k = 0; k < 3; ++k) c[i][j] += a[i][k] * b[k][j];
+    }
+  }
+  return c;
+}
+
+Vec3 times(const Matrix& a, const Vec3& v) {
+  return {a[0][0] * v[0] + a[0][1] * v[1] + a[0][2] * v[2],
+          a[1][0] * v[0] + a[1][1] * v[1] + a[1][2] * v[2],
+          a[2][0] * v[0] + a[2][1] * v[1] + a[2][2] * v[2]};
+}
+
+// R = Rz(yaw)·Ry(pitch)·Rx(roll), the truth's convention, as a product of the three matrices.
+Matrix matrix_of_rpy(const Vec3& rpy) {
+  const double cr = std::cos(rpy[0]), sr = std::sin(rpy[0]);
+  const double cp = std::cos(rpy[1]), sp = std::sin(rpy[1]);
+  const double cy = std::cos(rpy[2]), sy = std::sin(rpy[2]);
+  const Matrix rx{{{1, 0, 0}, {0, cr, -sr}, {0, sr, cr}}};
+  const Matrix ry{{{cp, 0, sp}, {0, 1, 0}, {-sp, 0, cp}}};
+  const Matrix rz{{{cy, -sy, 0}, {sy, cy, 0}, {0, 0, 1}}};
+  return times(rz, times(ry, rx));
 }
 
 struct Pose {
   Vec3 position{};
-  Quaternion rotation{0, 0, 0, 1};
+  Matrix rotation{};
 };
 
 // Every link's pose in the world: base_link at the true pose, then down the tree.
 std::map<std::string, Pose> world_poses(const GroundTruth& truth,
                                         const std::vector<LinkTransform>& links) {
   std::map<std::string, Pose> poses;
-  poses["base_link"] = {truth.position_m, quaternion_of_rpy(truth.roll_pitch_yaw_rad)};
+  poses["base_link"] = {truth.position_m, matrix_of_rpy(truth.roll_pitch_yaw_rad)};
   for (const LinkTransform& link : links) {  // parents come before their children
     const Pose& parent = poses.at(link.parent);
-    const Vec3 offset = rotate(parent.rotation, link.translation);
+    const Vec3 offset = times(parent.rotation, link.translation);
     poses[link.child] = {{parent.position[0] + offset[0], parent.position[1] + offset[1],
                           parent.position[2] + offset[2]},
-                         multiply(parent.rotation, link.rotation)};
+                         times(parent.rotation, matrix_of(link.rotation))};
   }
   return poses;
 }
