@@ -1,5 +1,5 @@
-// Foxglove's WebSocket protocol (subprotocol foxglove.websocket.v1, the spec of
-// github.com/foxglove/ws-protocol, docs/spec.md), the part the link server speaks on /foxglove
+// Foxglove's WebSocket protocol (subprotocol foxglove.websocket.v1, the spec in the
+// foxglove/ws-protocol repository on GitHub), the part the link server speaks on /foxglove
 // (docs/foxglove.md): the server's JSON messages (serverInfo, status, advertise, parameterValues),
 // its binary ones (message data, opcode 0x01; time, 0x02), and the client's operations it takes
 // (subscribe, unsubscribe, getParameters, setParameters, subscribeParameterUpdates,
