@@ -44,6 +44,7 @@ Driver::Driver(const Params& params, std::optional<JointMemory> kept)
       runtime_(runtime_settings_from(params)),
       kept_(std::move(kept)) {
   validate(runtime_);
+  status_.settings = runtime_;
   if (kept_) startup_.continue_joints();
 }
 
@@ -129,6 +130,7 @@ void Driver::hold_unknown_joints() {
 void Driver::set_runtime(const RuntimeSettings& settings) {
   validate(settings);
   runtime_ = settings;
+  status_.settings = settings;
 }
 
 void Driver::take_responses(const CycleResponses& r) {

@@ -13,6 +13,7 @@
 #include "core/navigation/mission.hpp"
 #include "core/params.hpp"
 #include "driver/frame_intake.hpp"
+#include "driver/operator_commands.hpp"
 #include "driver/startup.hpp"
 
 namespace marsokhod::driver {
@@ -95,6 +96,8 @@ struct DriverStatus {
   double stalled_s = 0.0;
   // The operator's mission (core/navigation/mission.hpp): cmd_vel, turn, move, goto.
   navigation::MissionStatus mission;
+  // The run-time settings in force this cycle (the operator's configure, a scenario's [runtime]).
+  RuntimeSettings settings;
 };
 
 }  // namespace marsokhod::driver

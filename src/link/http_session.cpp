@@ -9,6 +9,7 @@
 #include <boost/beast/websocket/rfc6455.hpp>
 
 #include "link/access_token.hpp"
+#include "link/foxglove_protocol.hpp"
 #include "link/static_files.hpp"
 #include "link/websocket_session.hpp"
 
@@ -135,10 +136,35 @@ bool HttpSession::refuse_token(const Request& request, const AuthDecision& decis
   return true;
 }
 
+// Whether the upgrade offers `protocol` among its Sec-WebSocket-Protocol values.
+static bool offers_subprotocol(const HttpSession::Request& request, std::string_view protocol) {
+  std::string_view offered = view(request[http::field::sec_websocket_protocol]);
+  while (!offered.empty()) {
+    const auto comma = offered.find(',');
+    std::string_view item = offered.substr(0, comma);
+    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+    if (item == protocol) return true;
+    if (comma == std::string_view::npos) break;
+    offered.remove_prefix(comma + 1);
+  }
+  return false;
+}
+
 void HttpSession::upgrade(Request&& request) {
-  if (target_path(view(request.target())) != "/ws") {
+  const std::string_view path = target_path(view(request.target()));
+  const bool foxglove = path == "/foxglove";
+  if (path != "/ws" && !foxglove) {
     core_.count_http_request();
-    send_text(request, http::status::not_found, "no WebSocket here; the console's is /ws");
+    send_text(request, http::status::not_found,
+              "no WebSocket here; the console's is /ws, Foxglove's /foxglove");
+    return;
+  }
+  if (foxglove && !offers_subprotocol(request, foxglove::kSubprotocol)) {
+    send_text(request, http::status::bad_request,
+              "/foxglove speaks the subprotocol " + std::string(foxglove::kSubprotocol) +
+                  " only: ask for it in Sec-WebSocket-Protocol (Foxglove's WebSocket connection "
+                  "does)");
     return;
   }
   const auto origin = origin_of(request);
@@ -149,15 +175,22 @@ void HttpSession::upgrade(Request&& request) {
                   "if it should");
     return;
   }
-  const AuthDecision decision = core_.authorize_upgrade(
-      view(request[http::field::cookie]), view(request[http::field::authorization]), address_);
+  // Foxglove's connection dialog takes a URL only: its token comes in the query.
+  const auto query_token =
+      foxglove ? query_parameter(view(request.target()), "token") : std::nullopt;
+  const AuthDecision decision =
+      core_.authorize_upgrade(view(request[http::field::cookie]),
+                              view(request[http::field::authorization]), address_, query_token);
   if (refuse_token(request, decision)) return;
   if (!core_.has_room()) {
     send_text(request, http::status::service_unavailable,
               "too many consoles connected; close one and try again");
     return;
   }
-  std::make_shared<WebSocketSession>(stream_.release_socket(), core_)->run(std::move(request));
+  std::make_shared<WebSocketSession>(stream_.release_socket(), core_,
+                                     foxglove ? WebSocketSession::Kind::kFoxglove
+                                              : WebSocketSession::Kind::kConsole)
+      ->run(std::move(request));
 }
 
 void HttpSession::open_session(const Request& request) {

@@ -1,5 +1,7 @@
-// The operator console's server: HTTP for the console's files and a WebSocket at /ws for the
-// protocol of docs/operator-protocol.md, on its own thread (Boost.Beast over Boost.Asio). The
+// The operator console's server: HTTP for the console's files, a WebSocket at /ws for the
+// protocol of docs/operator-protocol.md and one at /foxglove for Foxglove's
+// (foxglove.websocket.v1: foxglove_protocol.hpp, docs/foxglove.md), on its own thread
+// (Boost.Beast over Boost.Asio). The
 // application's control loop never waits on the network: it takes the commands that arrived
 // (take_inbound) and hands over the newest status (publish_status), both without blocking on
 // any client.
@@ -16,6 +18,7 @@
 //    silence is the driver's operator_timeout_s;
 //  - every queue is bounded: a client whose outgoing queue fills (it reads slower than status
 //    arrives, or not at all) is dropped rather than allowed to hold memory or delay others;
+//    a Foxglove client's data messages instead give way, oldest first (they are a stream);
 //    when the application stops taking commands, new ones are refused with an error, except a
 //    stop, which displaces the oldest command.
 #pragma once
@@ -46,6 +49,10 @@ struct ServerOptions {
   std::size_t max_clients = 16;        // WebSocket clients at once; more get HTTP 503
   std::size_t client_queue_messages = 64;   // unsent messages per client before it is dropped
   std::size_t inbound_queue_commands = 256;  // commands waiting for take_inbound
+  // Foxglove: unsent messages per client before its oldest data messages are dropped, and the
+  // messages published but not yet taken by the server thread (the oldest dropped beyond).
+  std::size_t foxglove_queue_messages = 1024;
+  std::size_t foxglove_pending_messages = 4096;
   double idle_timeout_s = 10.0;        // a WebSocket silent this long (pings unanswered) is closed
   std::vector<std::string> allowed_hosts;    // Host names served besides the listen address
   std::vector<std::string> allowed_origins;  // WebSocket origins besides the server's own
@@ -84,6 +91,27 @@ struct ServerStats {
   std::uint64_t statuses_published = 0;  // publish_status calls
   std::uint64_t statuses_sent = 0;       // status broadcasts; fewer when coalesced
   std::uint64_t http_requests = 0;       // plain HTTP requests (files, refusals)
+  std::size_t foxglove_clients = 0;      // Foxglove clients connected now
+  std::uint64_t foxglove_connections = 0;  // Foxglove clients accepted since start()
+  std::uint64_t foxglove_messages_sent = 0;     // message data sent to subscribers
+  std::uint64_t foxglove_messages_dropped = 0;  // data dropped for a slow client or a full hand-over
+};
+
+// One message for the Foxglove clients (publish_foxglove): its channel by topic (advertised the
+// first time it is seen, with `schema` — a JSON Schema's text — under `schema_name`), the JSON
+// payload and its log time.
+struct FoxgloveMessage {
+  std::string topic;
+  std::string schema_name;
+  std::shared_ptr<const std::string> schema;
+  std::string payload;
+};
+
+// What the Foxglove clients want now: whether any is connected, and the topics subscribed to.
+struct FoxgloveInterest {
+  bool connected = false;
+  std::vector<std::string> subscribed;  // sorted, each once
+  bool wants(const std::string& topic) const;
 };
 
 class ServerCore;
@@ -109,6 +137,9 @@ class LinkServer {
   // What to open in a browser: "http://127.0.0.1:8080/?token=…" (the page trades the token for
   // a session cookie and removes it from the address bar).
   std::string console_url() const;
+  // What to give Foxglove (Open connection → Foxglove WebSocket):
+  // "ws://127.0.0.1:8080/foxglove?token=…".
+  std::string foxglove_url() const;
 
   // Thread-safe. Every command that arrived since the last call, oldest first.
   std::vector<InboundCommand> take_inbound();
@@ -116,6 +147,12 @@ class LinkServer {
   // it to every client as {"type":"status","status":…} no sooner than status_period_s after the
   // previous one. Statuses published in between are replaced, never queued.
   void publish_status(nlohmann::json status);
+  // Thread-safe, never blocks on clients: the Foxglove clients get a time message (`time_ns`,
+  // the rover's mission time) and each message on a channel they subscribe to, logged at
+  // `time_ns`. A channel is advertised the first time a message names its topic.
+  void publish_foxglove(std::uint64_t time_ns, std::vector<FoxgloveMessage> messages);
+  // Thread-safe: what to build messages for (nothing while no Foxglove client is connected).
+  FoxgloveInterest foxglove_interest() const;
   ServerStats stats() const;
 
  private:

@@ -7,14 +7,11 @@
 #include "link/server_core.hpp"
 
 namespace marsokhod::link {
-namespace {
 
 double steady_now_s() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
-
-}  // namespace
 
 bool ServerCore::host_allowed(std::string_view host) {
   if (link::host_allowed(host, policy_)) return true;
@@ -47,11 +44,15 @@ AuthDecision ServerCore::check_token(std::string_view given, const std::string& 
 
 AuthDecision ServerCore::authorize_upgrade(std::string_view cookie_header,
                                            std::string_view authorization,
-                                           const std::string& address) {
+                                           const std::string& address,
+                                           std::optional<std::string_view> query_token) {
   if (const auto id = cookie_value(cookie_header, cookie_name()); id && sessions_.valid(*id)) {
     return {AuthDecision::Result::kAllowed, 0.0};
   }
-  return check_token(bearer_token(authorization).value_or(std::string_view{}), address);
+  if (const auto bearer = bearer_token(authorization); bearer || !query_token) {
+    return check_token(bearer.value_or(std::string_view{}), address);
+  }
+  return check_token(*query_token, address);
 }
 
 AuthDecision ServerCore::open_session(std::string_view authorization, const std::string& address,

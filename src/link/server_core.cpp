@@ -29,10 +29,11 @@ void validate(const ServerOptions& options) {
     throw std::invalid_argument("idle_timeout_s: must be a finite number > 0 s");
   }
   if (options.max_clients == 0 || options.client_queue_messages == 0 ||
-      options.inbound_queue_commands == 0 || options.max_connections == 0) {
+      options.inbound_queue_commands == 0 || options.max_connections == 0 ||
+      options.foxglove_queue_messages == 0 || options.foxglove_pending_messages == 0) {
     throw std::invalid_argument(
-        "max_clients, client_queue_messages, inbound_queue_commands, max_connections: must be "
-        "at least 1");
+        "max_clients, client_queue_messages, inbound_queue_commands, max_connections, "
+        "foxglove_queue_messages, foxglove_pending_messages: must be at least 1");
   }
   for (const double value :
        {options.http_connection_max_s, options.max_input_age_s, options.message_rate_per_s,
@@ -202,8 +203,7 @@ void ServerCore::on_text(ClientId client, std::string_view text) {
   count(&ServerStats::messages_received);
   const auto it = clients_.find(client);
   if (it == clients_.end()) return;
-  const double now_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  const double now_s = steady_now_s();
   if (!it->second.messages.take(now_s)) {
     count(&ServerStats::rate_limited);
     return;
@@ -358,6 +358,7 @@ void ServerCore::flush_status() {
   }
   next_status_time_ = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                 std::chrono::duration<double>(options_.status_period_s));
+  if (const auto it = status.find("settings"); it != status.end()) foxglove_settings(*it);
   // One text for every client: the dump is the expensive part.
   const auto text = std::make_shared<const std::string>(wire_text(status_envelope(status)));
   std::vector<std::shared_ptr<WebSocketSession>> sessions;

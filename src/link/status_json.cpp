@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/mobility/gait_table.hpp"
+#include "link/command_json.hpp"
 
 namespace marsokhod::link {
 namespace {
@@ -126,6 +127,7 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
       {"attitude", Json{{"roll_rad", s.attitude.roll_rad}, {"pitch_rad", s.attitude.pitch_rad}}},
       {"stalled_s", s.stalled_s},
       {"mission", mission_json(s.mission)},
+      {"settings", runtime_settings_json(s.settings)},
   };
   if (!truth.is_null()) out["truth"] = truth;
   return out;

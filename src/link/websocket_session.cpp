@@ -1,11 +1,13 @@
 #include "link/websocket_session.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include <boost/asio/buffer.hpp>
 #include <boost/beast/core/buffers_to_string.hpp>
 #include <boost/beast/websocket.hpp>
 
+#include "link/foxglove_protocol.hpp"
 #include "link/operator_message.hpp"
 
 namespace marsokhod::link {
@@ -17,12 +19,14 @@ namespace websocket = beast::websocket;
 constexpr auto kHandshakeTimeout = std::chrono::seconds(10);
 // Larger than any legal message, so that the parser, not the transport, rejects an oversized
 // one — with an error naming the limit instead of a closed connection.
-constexpr std::size_t kReadMessageMaxBytes = 16 * kMaxOperatorMessageBytes;
+constexpr std::size_t kReadMessageMaxBytes =
+    std::max(16 * kMaxOperatorMessageBytes, 2 * foxglove::kMaxClientMessageBytes);
 
 }  // namespace
 
-WebSocketSession::WebSocketSession(boost::asio::ip::tcp::socket&& socket, ServerCore& core)
-    : ws_(std::move(socket)), core_(core) {}
+WebSocketSession::WebSocketSession(boost::asio::ip::tcp::socket&& socket, ServerCore& core,
+                                   Kind kind)
+    : ws_(std::move(socket)), core_(core), kind_(kind) {}
 
 WebSocketSession::~WebSocketSession() { core_.untrack(key_); }
 
@@ -37,7 +41,13 @@ void WebSocketSession::run(beast::http::request<beast::http::string_body> reques
   // Pings keep a quiet but live console connected and find a dead one within the timeout.
   timeouts.keep_alive_pings = true;
   ws_.set_option(timeouts);
-  ws_.set_option(websocket::stream_base::decorator([](websocket::response_type& response) {
+  const bool foxglove = kind_ == Kind::kFoxglove;
+  ws_.set_option(websocket::stream_base::decorator([foxglove](websocket::response_type& response) {
+    // The subprotocol the client offered (the upgrade was refused without it).
+    if (foxglove) {
+      response.set(beast::http::field::sec_websocket_protocol,
+                   std::string(foxglove::kSubprotocol));
+    }
     response.set(beast::http::field::server, "marsokhod-link");
     response.set("X-Content-Type-Options", "nosniff");
     response.set("Referrer-Policy", "no-referrer");
@@ -54,7 +64,8 @@ void WebSocketSession::on_accept(beast::error_code error) {
     return;
   }
   try {
-    client_ = core_.add_client(shared_from_this());
+    client_ = kind_ == Kind::kFoxglove ? core_.add_foxglove_client(shared_from_this())
+                                       : core_.add_client(shared_from_this());
   } catch (const std::exception& failure) {
     core_.on_handler_failure("a console's hello", failure);
     finish();
@@ -75,7 +86,13 @@ void WebSocketSession::on_read(beast::error_code error) {
     return;
   }
   try {
-    if (ws_.got_text()) {
+    if (kind_ == Kind::kFoxglove) {
+      if (ws_.got_text()) {
+        core_.on_foxglove_text(client_, beast::buffers_to_string(buffer_.data()));
+      } else {
+        core_.on_foxglove_binary(client_);
+      }
+    } else if (ws_.got_text()) {
       core_.on_text(client_, beast::buffers_to_string(buffer_.data()));
     } else {
       core_.on_binary(client_);
@@ -98,15 +115,43 @@ void WebSocketSession::send(std::shared_ptr<const std::string> text) {
     close();
     return;
   }
-  queue_.push_back(std::move(text));
+  push({std::move(text), false, false});
+}
+
+void WebSocketSession::send_foxglove(std::shared_ptr<const std::string> data, bool binary,
+                                     bool droppable) {
+  if (closed_) return;
+  const std::size_t limit = core_.options().foxglove_queue_messages;
+  if (queue_.size() >= limit) {
+    // The oldest droppable message not being written gives way; else this one, if it may.
+    const auto first = queue_.begin() + (writing_ ? 1 : 0);
+    const auto oldest = std::find_if(first, queue_.end(),
+                                     [](const Outgoing& m) { return m.droppable; });
+    if (oldest != queue_.end()) {
+      queue_.erase(oldest);
+      core_.on_foxglove_dropped(1);
+    } else if (droppable) {
+      core_.on_foxglove_dropped(1);
+      return;
+    } else if (queue_.size() >= 2 * limit) {
+      core_.on_slow_client(client_);
+      close();
+      return;
+    }
+  }
+  push({std::move(data), binary, droppable});
+}
+
+void WebSocketSession::push(Outgoing message) {
+  queue_.push_back(std::move(message));
   if (!writing_) write_next();
 }
 
 void WebSocketSession::write_next() {
   writing_ = true;
-  ws_.text(true);
+  ws_.binary(queue_.front().binary);
   // The queue keeps the text alive until the write completes (front is popped in on_write).
-  ws_.async_write(boost::asio::buffer(*queue_.front()),
+  ws_.async_write(boost::asio::buffer(*queue_.front().data),
                   [self = shared_from_this()](beast::error_code error, std::size_t) {
                     self->on_write(error);
                   });
@@ -135,7 +180,11 @@ void WebSocketSession::finish() {
   close();
   if (client_ == 0 || finished_) return;
   finished_ = true;
-  core_.remove_client(client_);
+  if (kind_ == Kind::kFoxglove) {
+    core_.remove_foxglove_client(client_);
+  } else {
+    core_.remove_client(client_);
+  }
 }
 
 }  // namespace marsokhod::link

@@ -63,14 +63,28 @@ class LiveBus {
   virtual const driver::DriverStatus& status() const = 0;
   virtual double time_s() const = 0;  // the status line's time and --duration's
   virtual nlohmann::json truth() const { return nullptr; }
+  virtual std::optional<TruePose> true_pose() const { return std::nullopt; }
+  // The last step's frames: received at their bus time (µs), sent at time_us.
+  const std::vector<std::pair<std::int64_t, protocol::CanFrame>>& received() const {
+    return received_frames_;
+  }
+  const std::vector<protocol::CanFrame>& sent() const { return sent_frames_; }
+  std::int64_t step_time_us() const { return step_time_us_; }
+
+ protected:
+  std::vector<std::pair<std::int64_t, protocol::CanFrame>> received_frames_;
+  std::vector<protocol::CanFrame> sent_frames_;
+  std::int64_t step_time_us_ = 0;
 };
 
 // `run`: the simulated rover and the driver in lockstep (session.hpp), the scenario's faults at
 // their times, every cycle recorded when asked.
 class SimulatedBus final : public LiveBus {
  public:
-  SimulatedBus(Session& session, const std::optional<Scenario>& scenario, Recorder* recorder)
-      : session_(&session), scenario_(&scenario), recorder_(recorder) {}
+  SimulatedBus(Session& session, const std::optional<Scenario>& scenario, Recorder* recorder,
+               const Params& rover_params)
+      : session_(&session), scenario_(&scenario), recorder_(recorder),
+        joints_(sim::rover_joints(rover_params)) {}
   void wait_until(Pacer::Clock::time_point deadline) override {
     std::this_thread::sleep_until(deadline);
   }
@@ -88,6 +102,12 @@ class SimulatedBus final : public LiveBus {
     }
     const CycleRecord& cycle = session_->step(input);
     follow_truth_odometry(*session_, cycle, truth_odometry_);
+    received_frames_.clear();
+    for (const sim::TimedFrame& f : cycle.received) {
+      received_frames_.emplace_back(std::llround(f.time_s * 1e6), f.frame);
+    }
+    sent_frames_ = cycle.sent;
+    step_time_us_ = cycle.time_us;
     if (recorder_ != nullptr) {
       recorder_->record(cycle, settings_changed ? std::optional(session_->runtime()) : std::nullopt,
                         session_->status(), session_->rover());
@@ -100,6 +120,9 @@ class SimulatedBus final : public LiveBus {
                                                    ? std::optional(truth_odometry_.pose())
                                                    : std::nullopt);
   }
+  std::optional<TruePose> true_pose() const override {
+    return true_pose_of(session_->rover().truth(), joints_);
+  }
 
  private:
   Session* session_;
@@ -107,6 +130,7 @@ class SimulatedBus final : public LiveBus {
   Recorder* recorder_;
   std::size_t next_fault_ = 0;
   estimation::OdometryFrameTracker truth_odometry_;  // the truth in the driver's frame
+  std::vector<sim::RoverJoint> joints_;  // the URDF's, for /tf/links
 };
 
 // `drive`: the driver on a CAN transport; the frames that arrive until a cycle is due are its.
@@ -133,6 +157,10 @@ class TransportBus final : public LiveBus {
     const std::int64_t t_us = std::llround(t_s * 1e6);
     const auto& sent = driver_.step(static_cast<double>(t_us) * 1e-6, received_, input);
     for (const auto& f : sent) transport_->send(f);
+    received_frames_.clear();
+    for (const auto& f : received_) received_frames_.emplace_back(t_us, f);
+    sent_frames_ = sent;
+    step_time_us_ = t_us;
     if (recorder_ != nullptr) {
       CycleRecord cycle;
       cycle.time_us = t_us;
@@ -206,7 +234,8 @@ int run_cycles(LiveBus& bus, LiveConsole& console, std::chrono::microseconds per
       err << "marsokhod " << o.command << ": " << e.what() << "\n";
       return 1;
     }
-    if (k % console.status_every() == 0) console.publish(bus.status(), bus.truth());
+    console.frames(bus.status(), bus.received(), bus.sent(), bus.step_time_us());
+    if (k % console.status_every() == 0) console.publish(bus.status(), bus.truth(), bus.true_pose());
     if (!o.quiet && k % 64 == 0) print_status_line(bus.time_s(), bus.status(), out);
     if (o.duration_s > 0.0 && bus.time_s() >= o.duration_s) break;
   }
@@ -236,7 +265,7 @@ int run_live(const RunArgs& args, const config::LoadedConfig& config, std::ostre
     return kUsageError;
   }
   out << config::describe_calibration(config.calibration) << "\n";
-  SimulatedBus bus(*session, scenario, recorder.get());
+  SimulatedBus bus(*session, scenario, recorder.get(), config.nominal);
   run_cycles(bus, *console, std::chrono::microseconds(session->cycle_us()),
              {"run", args.duration_s, args.quiet}, out, err);
   out << "stopped after " << session->time_s() << " s\n";

@@ -67,6 +67,7 @@ Recorder::Recorder(const std::filesystem::path& folder, const std::filesystem::p
     }
   }
   if (mcap_params != nullptr) {
+    joints_ = sim::rover_joints(*mcap_params);
     mcap_ = std::make_unique<McapRecording>(folder / "recording.mcap", *mcap_params, source,
                                             read_text_file(config_file),
                                             read_text_file(calibration_file));
@@ -120,7 +121,7 @@ void Recorder::record(const CycleRecord& cycle,
   if (rover != nullptr) {
     m.truth = link::truth_json(*rover);
     const sim::GroundTruth t = rover->truth();
-    m.true_pose = TruePose{t.position_m, t.roll_pitch_yaw_rad};
+    m.true_pose = true_pose_of(t, joints_);
   }
   mcap_->record(m);
 }

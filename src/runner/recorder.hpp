@@ -55,6 +55,7 @@ class Recorder {
   std::ofstream operator_;
   std::ofstream telemetry_;
   std::unique_ptr<McapRecording> mcap_;
+  std::vector<sim::RoverJoint> joints_;  // the URDF's, for /tf/links
 };
 
 }  // namespace marsokhod::runner

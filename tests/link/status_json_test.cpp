@@ -49,6 +49,13 @@ driver::DriverStatus sample_status() {
   s.warnings = {"supply 19.8 V near the brown-out voltage"};
   s.bus = {100, 1, 2, 3, 4, "bad dlc"};
   s.lcd = "24.0V ok";
+  s.settings.max_drop_v = 2.5;
+  s.settings.speed_scale = 0.5;
+  s.settings.switches.load_distribution = LoadDistributionMode::kSlip;
+  s.settings.switches.power_management = true;
+  s.settings.switches.slant_response = false;
+  s.settings.switches.contract_on_turn = true;
+  s.settings.switches.axle_placement = false;
   return s;
 }
 
@@ -90,6 +97,10 @@ TEST(StatusJson, CarriesEveryFieldUnderItsKey) {
   EXPECT_EQ(j["bus"]["last_error"], "bad dlc");
   EXPECT_EQ(j["lcd"], "24.0V ok");
   EXPECT_FALSE(j.contains("truth"));
+  // The settings in force, in configure's own keys: the console's form shows them.
+  EXPECT_EQ(j["settings"], nlohmann::json::parse(R"({"max_drop_v":2.5,"load_distribution":"s",
+      "behaviours":{"power_management":true,"slant_response":false,"contract_on_turn":true,
+      "axle_placement":false},"speed_scale":0.5})"));
 }
 
 TEST(StatusJson, KeysEveryMotorByItsName) {

@@ -83,8 +83,14 @@ class TestClient {
   }
   bool send(const nlohmann::json& message) { return send(message.dump()); }
 
+  // One message as it came: text or binary.
+  struct Frame {
+    bool binary = false;
+    std::string data;
+  };
+
   // The next message, or nullopt after `timeout` or when the connection ended (then closed()).
-  std::optional<nlohmann::json> receive(std::chrono::milliseconds timeout = kWait) {
+  std::optional<Frame> receive_frame(std::chrono::milliseconds timeout = kWait) {
     if (!read_pending_) {
       read_pending_ = true;
       read_done_ = false;
@@ -99,9 +105,16 @@ class TestClient {
       closed_ = true;
       return std::nullopt;
     }
-    const std::string text = beast::buffers_to_string(buffer_.data());
+    Frame frame{ws_.got_binary(), beast::buffers_to_string(buffer_.data())};
     buffer_.consume(buffer_.size());
-    return nlohmann::json::parse(text);
+    return frame;
+  }
+
+  // The next message as JSON (a text message).
+  std::optional<nlohmann::json> receive(std::chrono::milliseconds timeout = kWait) {
+    const auto frame = receive_frame(timeout);
+    if (!frame) return std::nullopt;
+    return nlohmann::json::parse(frame->data);
   }
 
   // The next message of `type`, skipping others (a status may come at any time).

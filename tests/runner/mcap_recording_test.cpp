@@ -104,7 +104,8 @@ TEST(McapRecording, AScenarioRecordsEveryChannel) {
   }
   EXPECT_EQ(topics, (std::set<std::string>{"/status", "/imu", "/joint_states", "/pose",
                                            "/pose/estimate", "/can/raw", "/can/decoded",
-                                           "/operator/input", "/operator/runtime", "/tf"}));
+                                           "/operator/input", "/operator/runtime", "/tf",
+                                           "/tf/links"}));
   const auto topic = by_topic(f);
   const auto can = lines_of(run / "can.log");
   const auto cycles = lines_of(run / "operator.jsonl");
@@ -112,6 +113,7 @@ TEST(McapRecording, AScenarioRecordsEveryChannel) {
   EXPECT_EQ(topic.at("/can/decoded").size(), can.size());
   EXPECT_EQ(topic.at("/status").size(), cycles.size());
   EXPECT_EQ(topic.at("/tf").size(), cycles.size());
+  EXPECT_EQ(topic.at("/tf/links").size(), cycles.size());
   EXPECT_EQ(topic.at("/operator/runtime").size(), 1u);
   std::size_t inputs = 0;
   for (const std::string& line : cycles) inputs += Json::parse(line).at("input").is_null() ? 0 : 1;
@@ -122,7 +124,21 @@ TEST(McapRecording, AScenarioRecordsEveryChannel) {
   const auto supply = column(run / "telemetry.csv", "supply_v");
   const auto p6 = column(run / "telemetry.csv", "AF_p_rad");
   const auto true_x = column(run / "telemetry.csv", "true_x_m");
+  const auto true_p6 = column(run / "telemetry.csv", "true_p6_rad");
   ASSERT_EQ(t.size(), cycles.size());
+  // /tf/links: the front lever turns about y by the true p6 (from its layout value, which the
+  // joint's origin takes back: compare changes).
+  const auto lever_angle = [&](std::size_t k) {
+    const Json links = Json::parse(topic.at("/tf/links")[k].data);
+    for (const Json& transform : links.at("transforms")) {
+      if (transform.at("child_frame_id") != "front_lever") continue;
+      EXPECT_EQ(transform.at("parent_frame_id"), "front_strut");
+      const Json& q = transform.at("rotation");
+      return 2.0 * std::atan2(q.at("y").get<double>(), q.at("w").get<double>());
+    }
+    ADD_FAILURE() << "no front_lever in /tf/links";
+    return 0.0;
+  };
   for (std::size_t k = 0; k < cycles.size(); k += 37) {
     const Json status = Json::parse(topic.at("/status")[k].data);
     EXPECT_EQ(topic.at("/status")[k].log_time, static_cast<std::uint64_t>(std::llround(std::stod(t[k]) * 1e9)));
@@ -135,6 +151,7 @@ TEST(McapRecording, AScenarioRecordsEveryChannel) {
     const Json tf = Json::parse(topic.at("/tf")[k].data);
     EXPECT_EQ(tf.at("child_frame_id"), "base_link");
     EXPECT_NEAR(tf.at("translation").at("x").get<double>(), std::stod(true_x[k]), 1e-6);
+    EXPECT_NEAR(lever_angle(k) - lever_angle(0), std::stod(true_p6[k]) - std::stod(true_p6[0]), 1e-6);
   }
   // Every frame of can.log at its bus time, in the same order.
   for (std::size_t i = 0; i < can.size(); i += 101) {

@@ -1,13 +1,15 @@
 // The run-time settings the link accepts (`configure`, RuntimeSettings): Υ, the load
-// distribution, chapter 6's behaviours and the speed scale. The status does not echo them, so the
-// form starts "unchanged" everywhere and sends only what the operator set: a key left out of
-// `configure` leaves that setting as it is.
+// distribution, chapter 6's behaviours and the speed scale. Every field starts at the setting in
+// force, as the status reports it (`settings`: "off (in force)", a placeholder "1.5 (in force)"),
+// and the form sends only what the operator changed: a key left out of `configure` leaves that
+// setting as it is.
 
 import { control, element } from './dom.js';
 
 /** @typedef {import('./protocol').ConfigureMessage} ConfigureMessage */
 /** @typedef {import('./protocol').BehaviourName} BehaviourName */
 /** @typedef {import('./protocol').LoadDistribution} LoadDistribution */
+/** @typedef {import('./protocol').RuntimeSettings} RuntimeSettings */
 
 /**
  * The form's fields as FormData gives them: "" where the operator left a field unchanged.
@@ -60,6 +62,29 @@ export function configureMessage(values) {
   return { message };
 }
 
+/** @type {Record<LoadDistribution, string>} */
+const LOAD_DISTRIBUTION_NAMES = { off: 'off', v: 'hᵛ (6.5)', s: 'hˢ (6.6)' };
+
+// What each field shows as the setting in force ("unchanged" before the first status).
+/**
+ * @param {RuntimeSettings | null | undefined} settings
+ * @returns {Record<string, string>}
+ */
+export function inForceLabels(settings) {
+  /** @type {Record<string, string>} */
+  const labels = {};
+  const fields = ['max_drop_v', 'load_distribution', ...BEHAVIOURS, 'speed_scale'];
+  if (!settings) {
+    for (const name of fields) labels[name] = 'unchanged';
+    return labels;
+  }
+  labels.max_drop_v = `${settings.max_drop_v} (in force)`;
+  labels.load_distribution = `${LOAD_DISTRIBUTION_NAMES[settings.load_distribution] ?? settings.load_distribution} (in force)`;
+  for (const name of BEHAVIOURS) labels[name] = `${settings.behaviours[name] ? 'on' : 'off'} (in force)`;
+  labels.speed_scale = `${settings.speed_scale} (in force)`;
+  return labels;
+}
+
 export class ConfigPanel {
   /**
    * @param {HTMLFormElement} form
@@ -71,6 +96,8 @@ export class ConfigPanel {
       control(form, name, HTMLSelectElement).replaceChildren(...[['', 'unchanged'], ['on', 'on'], ['off', 'off']]
         .map(([value, text]) => new Option(text, value)));
     }
+    /** @type {string} */
+    this.shown = '';
     this.result = element(form, 'config-result', HTMLElement);
     form.addEventListener('submit', (event) => {
       event.preventDefault();
@@ -88,6 +115,23 @@ export class ConfigPanel {
         : Object.keys(settings).length ? `sent ${JSON.stringify(settings)}` : 'nothing to change';
     });
     element(form, 'clear-faults', HTMLElement).addEventListener('click', () => clearFaults());
+  }
+
+  // The settings in force (the status' `settings`): each field's "leave as it is" choice names
+  // them. Redrawn only when they change, never touching what the operator has typed or chosen.
+  /** @param {RuntimeSettings | null | undefined} settings */
+  showSettings(settings) {
+    const key = JSON.stringify(settings ?? null);
+    if (key === this.shown) return;
+    this.shown = key;
+    for (const [name, text] of Object.entries(inForceLabels(settings))) {
+      const field = this.form.elements.namedItem(name);
+      if (field instanceof HTMLInputElement) {
+        field.placeholder = text;
+      } else if (field instanceof HTMLSelectElement && field.options[0]?.value === '') {
+        field.options[0].text = text;
+      }
+    }
   }
 
   // The server accepts `configure` and `clear_faults` only from the controlling console.

@@ -122,6 +122,7 @@ link.on('pong', ({ rtt_ms }) => { $('link-state').title = `round trip ${rtt_ms.t
 link.on('status', ({ status }) => {
   window.marsokhod.status = status;
   statusPanel.update(status);
+  config.showSettings(status.settings);
   if (status.stop_latched) showStopBanner(status.stop_reason);
   else $('stop-banner').hidden = true;
   plots.add(status);

@@ -117,6 +117,14 @@ export interface ConfigureMessage {
   speed_scale?: number;
 }
 
+/** The run-time settings in force (the status' `settings`): every key present. */
+export interface RuntimeSettings {
+  max_drop_v: number;
+  load_distribution: LoadDistribution;
+  behaviours: Record<BehaviourName, boolean>;
+  speed_scale: number;
+}
+
 /** The messages without fields. */
 export interface CommandMessage {
   type: 'stop' | 'clear_faults' | 'take_control' | 'release_control' | 'ping';
@@ -352,5 +360,7 @@ export interface Status {
   stalled_s: StatusNumber;
   /** Absent from servers without missions. */
   mission?: MissionStatus;
+  /** The run-time settings in force; absent from older servers. */
+  settings?: RuntimeSettings;
   truth?: Truth;
 }

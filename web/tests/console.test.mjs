@@ -318,6 +318,33 @@ test('the keyboard drives the rover (W), and the configuration reaches the serve
   assert.deepEqual(page.problems, []);
 });
 
+
+test('the configuration panel shows the settings in force, and follows a change', async () => {
+  const page = pages[1];  // holds control
+  const form = page.locator('#config-form');
+  const shown = (name) => form.locator(`[name=${name}]`).evaluate((f) =>
+    (f instanceof HTMLInputElement ? f.placeholder : f.options[0].text));
+  const before = (await latestStatus(page)).settings;
+  assert.ok(before, 'the status reports the settings in force');
+  assert.equal(before.behaviours.slant_response, true, 'the previous test switched it on');
+  assert.equal(await shown('slant_response'), 'on (in force)');
+  assert.equal(await shown('max_drop_v'), `${before.max_drop_v} (in force)`);
+  assert.equal(await shown('speed_scale'), `${before.speed_scale} (in force)`);
+  assert.equal(await shown('load_distribution'),
+    `${{ off: 'off', v: 'hᵛ (6.5)', s: 'hˢ (6.6)' }[before.load_distribution]} (in force)`);
+
+  // Υ changed from the form: the driver takes it, the status says so, the field shows it.
+  const changed = before.max_drop_v === 2.5 ? 3 : 2.5;
+  await form.locator('input[name=max_drop_v]').fill(String(changed));
+  await page.click('#config-apply');
+  await waitForStatus(page, `the driver took Υ = ${changed} V`, (s, v) => s.settings.max_drop_v === v, changed, 3000);
+  await page.waitForFunction((v) => document.querySelector('#config-form [name=max_drop_v]').placeholder === `${v} (in force)`,
+    changed, { timeout: 3000 });
+  await form.locator('input[name=max_drop_v]').fill(String(before.max_drop_v));
+  await page.click('#config-apply');
+  await waitForStatus(page, 'Υ is back', (s, v) => s.settings.max_drop_v === v, before.max_drop_v, 3000);
+  assert.deepEqual(page.problems, []);
+});
 test('STOP (button or space bar) stops the rover while the stick is still pushed', async () => {
   const page = pages[1];
   for (const how of ['button', 'space']) {

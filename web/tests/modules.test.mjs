@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import { axleDistance, strutElevation, jointPosition, roverPose } from '../src/view3d.js';
 import { keyboardReading } from '../src/keyboard.js';
 import { readPad, firstStandardPad, mergeReadings, gamepadMessage, neutralReading } from '../src/gamepad.js';
-import { configureMessage } from '../src/config.js';
+import { configureMessage, inForceLabels } from '../src/config.js';
 import { websocketUrl, addressWithoutToken } from '../src/link.js';
 import { missionTime, lcdDisplay } from '../src/status.js';
 import {
@@ -122,6 +122,19 @@ test('configure sends only what was set, and refuses values out of range', () =>
   assert.match(configureMessage({ ...blank, max_drop_v: '0' }).error, /^Υ: 0 is out of range; allowed \(0, 10\] V$/);
   assert.match(configureMessage({ ...blank, speed_scale: '1.5' }).error, /out of range; allowed 0\.\.1/);
   assert.match(configureMessage({ ...blank, speed_scale: 'fast' }).error, /out of range/);
+});
+
+test('every configuration field names the setting in force, "unchanged" before the first status', () => {
+  const settings = {
+    max_drop_v: 2.5, load_distribution: 'v', speed_scale: 0.75,
+    behaviours: { power_management: true, slant_response: false, contract_on_turn: true, axle_placement: false },
+  };
+  assert.deepEqual(inForceLabels(settings), {
+    max_drop_v: '2.5 (in force)', load_distribution: 'hᵛ (6.5) (in force)', speed_scale: '0.75 (in force)',
+    power_management: 'on (in force)', slant_response: 'off (in force)', contract_on_turn: 'on (in force)',
+    axle_placement: 'off (in force)',
+  });
+  assert.deepEqual(Object.values(inForceLabels(undefined)), Array(7).fill('unchanged'));
 });
 
 test('the WebSocket address sits next to the page and never carries the token', () => {

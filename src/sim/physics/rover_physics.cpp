@@ -110,6 +110,8 @@ void RoverPhysics::Impl::resolve_ids() {
   ids.tilt_qpos[1] = m.jnt_qposadr[require_id(m, mjOBJ_JOINT, kRearTiltName)];
   ids.tilt_dof[0] = m.jnt_dofadr[require_id(m, mjOBJ_JOINT, kFrontTiltName)];
   ids.tilt_dof[1] = m.jnt_dofadr[require_id(m, mjOBJ_JOINT, kRearTiltName)];
+  ids.strut_qpos[0] = m.jnt_qposadr[require_id(m, mjOBJ_JOINT, "strut_front")];
+  ids.strut_qpos[1] = m.jnt_qposadr[require_id(m, mjOBJ_JOINT, "strut_rear")];
   ids.accelerometer = m.sensor_adr[require_id(m, mjOBJ_SENSOR, kAccelerometerName)];
   ids.stand_weld = require_id(m, mjOBJ_EQUALITY, kTestStandName);
   ids.stand_mocap = m.body_mocapid[require_id(m, mjOBJ_BODY, kTestStandName)];

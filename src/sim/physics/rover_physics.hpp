@@ -50,6 +50,11 @@ struct GroundTruth {
   std::array<double, kWheelCount> wheel_slip_mps{};
   std::array<bool, kWheelCount> wheel_contact{};
   std::array<std::array<double, 3>, kWheelCount> wheel_position_m{};  // for the 3-D view
+  // The passive joints, [0] front, [1] rear: the struts' pivots about the center axle
+  // (strut_front, strut_rear) and the exterior axles' tilts about x (tilt_front, tilt_rear), as
+  // the URDF names them (rover_urdf.hpp).
+  std::array<double, 2> strut_angle_rad{};
+  std::array<double, 2> axle_tilt_rad{};
 };
 
 struct MotorDrive {

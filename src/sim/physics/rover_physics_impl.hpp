@@ -24,6 +24,7 @@ struct RoverModelIds {
   std::array<int, 2> joint_hinge{}, shaft_hinge{};  // joint ids, for their ranges
   std::array<int, 2> joint_qpos{}, joint_lock{}, joint_coupling{};
   std::array<int, 2> tilt_qpos{}, tilt_dof{};
+  std::array<int, 2> strut_qpos{};  // the passive pivots strut_front, strut_rear
   int accelerometer = -1;  // sensordata address
   int stand_weld = -1;     // equality holding the center unit on the calibration stand
   int stand_mocap = -1;    // the stand's mocap index

@@ -132,6 +132,10 @@ GroundTruth RoverPhysics::truth() const {
   }
   truth.joint_angle_rad[kFrontJoint] = data.qpos[ids.joint_qpos[0]];
   truth.joint_angle_rad[kRearJoint] = data.qpos[ids.joint_qpos[1]];
+  for (std::size_t end = 0; end < 2; ++end) {
+    truth.strut_angle_rad[end] = data.qpos[ids.strut_qpos[end]];
+    truth.axle_tilt_rad[end] = data.qpos[ids.tilt_qpos[end]];
+  }
   const auto contacts = wheel_contacts(data, ids);
   for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
     const int body = ids.wheel_body[wheel];

@@ -3,16 +3,17 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <vector>
 
 #include "sim/physics/chassis_geometry.hpp"
 #include "sim/physics/mujoco_model.hpp"
+#include "sim/physics/rover_kinematics.hpp"
 #include "sim/physics/rover_mjcf.hpp"
 #include "sim/physics/xml_writer.hpp"
 
 namespace marsokhod::sim {
 namespace {
-
-using Vec3 = std::array<double, 3>;
 
 std::string vec3(double x, double y, double z) { return xml_numbers(Vec3{x, y, z}); }
 
@@ -65,14 +66,13 @@ void write_rod(XmlWriter& xml, double x, double z, double radius_m) {
               {{"radius", xml_number(radius_m)}, {"length", xml_number(std::hypot(x, z))}});
 }
 
-void write_joint(XmlWriter& xml, const std::string& name, const char* type,
-                 const std::string& parent, const std::string& child, const Vec3& xyz,
-                 const Vec3& rpy, const char* axis) {
-  xml.open("joint", {{"name", name}, {"type", type}});
-  xml.leaf("parent", {{"link", parent}});
-  xml.leaf("child", {{"link", child}});
-  xml.leaf("origin", {{"xyz", xml_numbers(xyz)}, {"rpy", xml_numbers(rpy)}});
-  xml.leaf("axis", {{"xyz", axis}});
+// Opens the joint element (the caller adds its limits and closes it).
+void write_joint(XmlWriter& xml, const RoverJoint& joint) {
+  xml.open("joint", {{"name", joint.name}, {"type", joint.type}});
+  xml.leaf("parent", {{"link", joint.parent}});
+  xml.leaf("child", {{"link", joint.child}});
+  xml.leaf("origin", {{"xyz", xml_numbers(joint.xyz)}, {"rpy", xml_numbers(joint.rpy)}});
+  xml.leaf("axis", {{"xyz", xml_numbers(joint.axis)}});
 }
 
 void write_limit(XmlWriter& xml, double lower, double upper, double effort, double velocity) {
@@ -85,12 +85,19 @@ void write_limit(XmlWriter& xml, double lower, double upper, double effort, doub
 struct Urdf {
   const Params& params;
   const mjModel& model;
+  std::vector<RoverJoint> joints;
   XmlWriter xml;
+  const RoverJoint& joint(const std::string& name) const {
+    for (const RoverJoint& j : joints) {
+      if (j.name == name) return j;
+    }
+    throw std::logic_error("urdf: no joint " + name);
+  }
   double stall_nm() const {
     return params.motors.max_no_load_speed_radps / params.load.gain_same_sign_radps_per_nm;
   }
 
-  void wheel(std::size_t wheel, const std::string& parent, double lateral_m) {
+  void wheel(std::size_t wheel) {
     const std::string name = wheel_name(wheel);
     xml.open("link", {{"name", name}});
     write_inertial(xml, model, name);
@@ -98,8 +105,7 @@ struct Urdf {
                 {{"radius", xml_number(params.geometry.wheel_radius_m)},
                  {"length", xml_number(kWheelWidthM)}});
     xml.close();
-    write_joint(xml, name, "continuous", parent, name, {0.0, lateral_m, 0.0}, {0.0, 0.0, 0.0},
-                "0 1 0");
+    write_joint(xml, joint(name));
     xml.leaf("limit", {{"effort", xml_number(stall_nm())},
                        {"velocity", xml_number(params.motors.max_no_load_speed_radps)}});
     xml.close();
@@ -108,21 +114,16 @@ struct Urdf {
   void lever(bool front) {
     const GeometryParams& g = params.geometry;
     const std::string prefix = front ? "front" : "rear";
-    const double direction = front ? 1.0 : -1.0;
     const double a = g.joint_to_exterior_axle_m;
-    const double b = g.center_axle_to_joint_m;
-    const double reach = direction * std::sqrt(b * b - a * a);
-    // The layout's hinge value (MuJoCo's ref): the URDF joint's origin turns back by it, so that
-    // the joint's value is the hinge's (p6, p7).
-    const double ref = (front ? -1.0 : 1.0) * vertical_bend_rad(g);
     const std::size_t motor = front ? kFrontJoint : kRearJoint;
+    const RoverJoint& hinge = joint(joint_hinge_name(motor));
+    const double reach = hinge.xyz[0];
 
     xml.open("link", {{"name", prefix + "_strut"}});
     write_inertial(xml, model, prefix + "_strut");
     write_rod(xml, reach, a, 0.03);
     xml.close();
-    write_joint(xml, "strut_" + prefix, "revolute", "base_link", prefix + "_strut",
-                {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, "0 1 0");
+    write_joint(xml, joint("strut_" + prefix));
     write_limit(xml, -kStrutPivotRangeRad, kStrutPivotRangeRad, 0.0, 0.0);
     if (!front) xml.leaf("mimic", {{"joint", "strut_front"}, {"multiplier", "-1"}, {"offset", "0"}});
     xml.leaf("dynamics", {{"damping", xml_number(kPassiveDampingNmsPerRad)}});
@@ -133,8 +134,7 @@ struct Urdf {
     write_rod(xml, 0.0, -a, 0.03);
     xml.close();
     const JointParams& j = params.joints;
-    write_joint(xml, joint_hinge_name(motor), "revolute", prefix + "_strut", prefix + "_lever",
-                {reach, 0.0, a}, {0.0, -ref, 0.0}, "0 1 0");
+    write_joint(xml, hinge);
     write_limit(xml, front ? j.front_min_rad : j.rear_min_rad,
                 front ? j.front_max_rad : j.rear_max_rad, stall_nm(),
                 params.motors.max_no_load_speed_radps);
@@ -147,13 +147,12 @@ struct Urdf {
     write_shape(xml, "0 0 0", vec3(std::numbers::pi / 2, 0.0, 0.0), "cylinder",
                 {{"radius", "0.04"}, {"length", xml_number(2 * beam)}});
     xml.close();
-    write_joint(xml, front ? kFrontTiltName : kRearTiltName, "revolute", prefix + "_lever",
-                prefix + "_axle", {0.0, 0.0, -a}, {0.0, 0.0, 0.0}, "1 0 0");
+    write_joint(xml, joint(front ? kFrontTiltName : kRearTiltName));
     write_limit(xml, -kMaxAxleTiltRad, kMaxAxleTiltRad, 0.0, 0.0);
     xml.leaf("dynamics", {{"damping", xml_number(kPassiveDampingNmsPerRad)}});
     xml.close();
-    wheel(front ? kFrontLeft : kBackLeft, prefix + "_axle", half_track);
-    wheel(front ? kFrontRight : kBackRight, prefix + "_axle", -half_track);
+    wheel(front ? kFrontLeft : kBackLeft);
+    wheel(front ? kFrontRight : kBackRight);
   }
 
   void center_unit() {
@@ -163,8 +162,8 @@ struct Urdf {
     const double half_width = g.track_width_m / 2 - kWheelWidthM / 2 - 0.05;
     write_shape(xml, vec3(0.0, 0.0, 0.17), "0 0 0", "box", {{"size", vec3(0.5, 2 * half_width, 0.14)}});
     xml.close();
-    wheel(kCenterLeft, "base_link", g.track_width_m / 2);
-    wheel(kCenterRight, "base_link", -g.track_width_m / 2);
+    wheel(kCenterLeft);
+    wheel(kCenterRight);
     lever(true);
     lever(false);
   }
@@ -175,7 +174,7 @@ struct Urdf {
 std::string rover_urdf(const Params& params) {
   validate_geometry(params.geometry);
   const ModelPtr model = load_rover_model(params, TerrainSpec{}, 0.002);
-  Urdf urdf{params, *model, {}};
+  Urdf urdf{params, *model, rover_joints(params), {}};
   urdf.xml.open("robot", {{"name", "marsokhod"}});
   urdf.center_unit();
   urdf.xml.close();
