@@ -151,6 +151,8 @@ void add_offline_commands(CLI::App& cli, Commands& c) {
 void add_soak_and_replay(CLI::App& cli, Commands& c) {
   c.soak_cmd = add_soak_command(cli, c.soak);
   c.slope_sweep_cmd = add_slope_sweep_command(cli, c.slope_sweep);
+  c.slope_sweep_cmd->add_option("--seed", c.slope_sweep.seed, "the rover unit (default 1)")
+      ->check(kSeed);
   c.replay_cmd = cli.add_subcommand(
       "replay", "re-run the driver over a recording and compare every request, bit for bit");
   c.replay_cmd->add_option("DIR", c.replay_dir, "a scenario's --out folder")->required();

@@ -27,8 +27,6 @@ CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args) {
       "slope-sweep",
       "the steepest soft-soil slope the simulated rover climbs by driving and by each gait");
   cmd->add_option("--ground", args.ground, "a soft soil: soft-sand (default) or lunar-soil");
-  cmd->add_option("--seed", args.seed, "the rover unit (default 1)")
-      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--distance", args.distance_m,
                   "metres along the slope that count as climbed (default 0.1)")
       ->check(CLI::Range(0.001, 100.0));

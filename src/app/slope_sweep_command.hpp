@@ -24,6 +24,7 @@ struct SlopeSweepArgs {
   double drive_radps = 1.0;
 };
 
+// Adds the subcommand to `cli`, filling `args` (the caller adds --seed with its seed check).
 CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args);
 
 // 0 when the sweep ran (whatever it found), 2 for a bad argument.
