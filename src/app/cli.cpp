@@ -13,6 +13,7 @@
 #include "app/calibrate_command.hpp"
 #include "app/decode_command.hpp"
 #include "app/scenario_command.hpp"
+#include "app/slope_sweep_command.hpp"
 #include "app/soak_command.hpp"
 #include "config/calibration.hpp"
 #include "config/load_params.hpp"
@@ -88,6 +89,7 @@ struct Commands {
   runner::DriveArgs drive;
   CalibrateArgs calibrate;
   SoakArgs soak;
+  SlopeSweepArgs slope_sweep;
   std::string replay_dir;
   CLI::App* decode_cmd = nullptr;
   CLI::App* scenario_cmd = nullptr;
@@ -97,6 +99,7 @@ struct Commands {
   CLI::App* drive_cmd = nullptr;
   CLI::App* calibrate_cmd = nullptr;
   CLI::App* soak_cmd = nullptr;
+  CLI::App* slope_sweep_cmd = nullptr;
   CLI::App* replay_cmd = nullptr;
   CLI::App* urdf_cmd = nullptr;
   CLI::App* export_cmd = nullptr;
@@ -147,6 +150,9 @@ void add_offline_commands(CLI::App& cli, Commands& c) {
 
 void add_soak_and_replay(CLI::App& cli, Commands& c) {
   c.soak_cmd = add_soak_command(cli, c.soak);
+  c.slope_sweep_cmd = add_slope_sweep_command(cli, c.slope_sweep);
+  c.slope_sweep_cmd->add_option("--seed", c.slope_sweep.seed, "the rover unit (default 1)")
+      ->check(kSeed);
   c.replay_cmd = cli.add_subcommand(
       "replay", "re-run the driver over a recording and compare every request, bit for bit");
   c.replay_cmd->add_option("DIR", c.replay_dir, "a scenario's --out folder")->required();
@@ -281,6 +287,9 @@ int dispatch(Commands& c, const config::LoadedConfig& loaded, std::istream& in,
   if (c.decode_cmd->parsed()) return run_decode(c.decode, params, in, out, err);
   if (c.scenario_cmd->parsed()) return run_scenario(c, loaded, out, err);
   if (c.soak_cmd->parsed()) return run_soak_command(c.soak, loaded, out, err);
+  if (c.slope_sweep_cmd->parsed()) {
+    return run_slope_sweep_command(c.slope_sweep, loaded, out, err);
+  }
   if (c.calibrate_cmd->parsed()) return run_calibrate_command(c.calibrate, loaded, in, out, err);
   if (c.urdf_cmd->parsed()) {
     try {

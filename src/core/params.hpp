@@ -164,6 +164,7 @@ struct OperatorParams {
   double dead_zone = 0.1;                  // |axis| below this reads as 0 (then rescaled to 0..1)
   double max_drive_speed_radps = 2.25;     // v1ᵈ at full deflection (chapter 5: 0.27 m/s)
   double max_spin_speed_radps = 1.5;       // v2ᵈ at full deflection
+  double max_drift_speed_radps = 1.0;      // v3ᵈ while a drift button is held (m3, chapter 5.2)
   double max_trench_speed_radps = 1.0;     // v4ᵈ at full deflection
   double joint_button_speed_radps = 0.5;   // v6ᵈ, v7ᵈ while an extend/contract button is held
   double calibration_duty = 0.08;          // Procedure 4.3: |d6|, |d7| in calibration mode

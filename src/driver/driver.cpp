@@ -278,8 +278,8 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   status_.stop_latched = operator_.stop_latched();
   status_.stop_reason = operator_.stop_reason();
   update_mission(time_s);
-  status_.targets = {targets_.v1_radps, targets_.v2_radps, targets_.v4_radps, targets_.v6_radps,
-                     targets_.v7_radps};
+  status_.targets = {targets_.v1_radps, targets_.v2_radps, targets_.v3_radps, targets_.v4_radps,
+                     targets_.v6_radps, targets_.v7_radps};
   update_faults(input);
   update_failsafes(period_s);
 

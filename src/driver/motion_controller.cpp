@@ -138,9 +138,9 @@ MotorVector MotionController::ramp_driving(const MotionInput& input,
   const double w_max = params_->motors.max_no_load_speed_radps;
   const control::ControlParams drive{params_->operator_input.drive_rate_per_s, w_max,
                                      input.period_s};
-  const std::array<double, 3> wanted{input.targets.v1_radps, input.targets.v2_radps,
-                                     input.targets.v4_radps};
-  for (std::size_t j = 0; j < 3; ++j) {
+  const std::array<double, 4> wanted{input.targets.v1_radps, input.targets.v2_radps,
+                                     input.targets.v3_radps, input.targets.v4_radps};
+  for (std::size_t j = 0; j < wanted.size(); ++j) {
     const double target =
         std::clamp(wanted[j] * settings.speed_scale, -kInsideBound * w_max, kInsideBound * w_max);
     const double c = control::velocity_control(drive_velocity_[j], target, drive);
@@ -148,12 +148,14 @@ MotorVector MotionController::ramp_driving(const MotionInput& input,
   }
   status.commands.v1_radps = drive_velocity_[0];
   status.commands.v2_radps = drive_velocity_[1];
-  status.commands.v4_radps = drive_velocity_[2];
+  status.commands.v3_radps = drive_velocity_[2];
+  status.commands.v4_radps = drive_velocity_[3];
   const double p6 = status.motors[kFrontJoint].position_rad;
   const double p7 = status.motors[kRearJoint].position_rad;
   const mobility::Lever front = mobility::front_lever(p6, params_->geometry);
   const mobility::Lever rear = mobility::rear_lever(p7, params_->geometry);
-  return mobility::driving_motion({drive_velocity_[0], drive_velocity_[1], 0.0, drive_velocity_[2]},
+  return mobility::driving_motion({drive_velocity_[0], drive_velocity_[1], drive_velocity_[2],
+                                   drive_velocity_[3]},
                                   front.clearance_m, rear.clearance_m, params_->spin);
 }
 

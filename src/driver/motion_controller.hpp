@@ -4,7 +4,7 @@
 //   3. backlash (4.1)/(4.2) → p, w; no-load estimate (4.4) → ν, load l = w − ν
 //   4. behaviours (chapter 6): D (6.3), slope σ and joint bounds (6.4), contract on turn,
 //      axle placement, load distribution h
-//   5. (4.14) ramps v1…v4; (4.16) or a gait's (4.15) moves the joints; ϱ and ρ (Remark 5.5)
+//   5. (4.14) ramps v1…v4 (v3: m3); (4.16) or a gait's (4.15) moves the joints; ϱ and ρ (Remark 5.5)
 //   6. summation (5.4) with κ under (5.5); + h; (4.3) inverse → duty cycles
 // The duty-cycle rules (slew limit, drv at pwm ≈ 0) and the CAN encoding come after, in Driver.
 #pragma once
@@ -103,7 +103,7 @@ class MotionController {
   behaviour::GravityEstimate gravity_;
   behaviour::AxlePlacementState front_placement_;
   behaviour::AxlePlacementState rear_placement_;
-  std::array<double, 3> drive_velocity_{};  // v1, v2, v4 after (4.14)
+  std::array<double, 4> drive_velocity_{};  // v1, v2, v3, v4 after (4.14)
   // v6, v7: the joints' velocity states of (4.13), i.e. the ŵ6(t), ŵ7(t) assigned to the joint
   // motors (chapter 4.4). The measured joint velocity cannot serve: it is 0 while a shaft
   // crosses its backlash gap, and the law would never leave the gap.

@@ -6,7 +6,8 @@ namespace marsokhod::driver {
 
 bool is_neutral(const mobility::OperatorTargets& t) {
   const auto& b = t.joint_buttons;
-  return t.v1_radps == 0.0 && t.v2_radps == 0.0 && t.v4_radps == 0.0 && t.v6_radps == 0.0 &&
+  return t.v1_radps == 0.0 && t.v2_radps == 0.0 && t.v3_radps == 0.0 &&
+         t.v4_radps == 0.0 && t.v6_radps == 0.0 &&
          t.v7_radps == 0.0 && t.gait_speed == 0.0 && !b.contract_front && !b.extend_front &&
          !b.contract_rear && !b.extend_rear && !t.front_joint_target_rad &&
          !t.rear_joint_target_rad;

@@ -90,6 +90,7 @@ std::optional<CommandError> check_targets(const mobility::OperatorTargets& t,
   };
   for (const Speed& s : {Speed{"v1", t.v1_radps, o.max_drive_speed_radps},
                          Speed{"v2", t.v2_radps, o.max_spin_speed_radps},
+                         Speed{"v3", t.v3_radps, o.max_drift_speed_radps},
                          Speed{"v4", t.v4_radps, o.max_trench_speed_radps},
                          Speed{"v6", t.v6_radps, w}, Speed{"v7", t.v7_radps, w}}) {
     if (auto e = check_number(s.field, s.value, symmetric_range(s.limit, "rad/s"))) return e;

@@ -37,7 +37,7 @@ struct OperatorInput {
 struct RuntimeSettings {
   behaviour::BehaviourSwitches switches;
   double max_drop_v = 1.5;   // Υ of (6.3), (0, 10] V
-  double speed_scale = 1.0;  // v1ᵈ, v2ᵈ, v4ᵈ are scaled by this ∈ [0, 1] (maximum speed)
+  double speed_scale = 1.0;  // v1ᵈ…v4ᵈ are scaled by this ∈ [0, 1] (maximum speed)
   bool operator==(const RuntimeSettings&) const = default;
 };
 RuntimeSettings runtime_settings_from(const Params& params);
@@ -89,7 +89,7 @@ std::optional<CommandError> check_number(std::string_view field, double value,
                                          const NumberRange& range);
 
 // The ranges in force: |v1| ≤ max_drive_speed_radps, |v2| ≤ max_spin_speed_radps,
-// |v4| ≤ max_trench_speed_radps, |v6|, |v7| ≤ max_no_load_speed_radps, s ∈ [−1, 1], the joint
+// |v3| ≤ max_drift_speed_radps, |v4| ≤ max_trench_speed_radps, |v6|, |v7| ≤ max_no_load_speed_radps, s ∈ [−1, 1], the joint
 // position targets inside (5.3).
 std::optional<CommandError> check_targets(const mobility::OperatorTargets& targets,
                                           const Params& params);

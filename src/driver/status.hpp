@@ -43,7 +43,8 @@ struct JointBoundsStatus {
 };
 
 struct TargetStatus {
-  double v1_radps = 0.0, v2_radps = 0.0, v4_radps = 0.0, v6_radps = 0.0, v7_radps = 0.0;
+  double v1_radps = 0.0, v2_radps = 0.0, v3_radps = 0.0, v4_radps = 0.0, v6_radps = 0.0,
+         v7_radps = 0.0;
 };
 
 struct DriverStatus {

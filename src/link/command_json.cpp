@@ -118,9 +118,9 @@ void write_gamepad(const mobility::GamepadState& gamepad, Json& object) {
 }
 
 std::vector<std::string_view> target_keys(TargetKeys keys) {
-  std::vector<std::string_view> all = {"v1",   "v2",         "v4",
-                                       "v6",   "v7",         "gait",
-                                       "gait_speed", "calibration_mode"};
+  std::vector<std::string_view> all = {"v1", "v2",   "v3",         "v4",
+                                       "v6", "v7",   "gait",       "gait_speed",
+                                       "calibration_mode"};
   if (keys == TargetKeys::kRecording) {
     all.insert(all.end(), {"joint_buttons", "front_joint_target", "rear_joint_target"});
   }
@@ -134,6 +134,7 @@ mobility::OperatorTargets read_targets(const Json& object, TargetKeys keys, cons
   };
   number("v1", t.v1_radps);
   number("v2", t.v2_radps);
+  number("v3", t.v3_radps);
   number("v4", t.v4_radps);
   number("v6", t.v6_radps);
   number("v7", t.v7_radps);
@@ -161,6 +162,7 @@ mobility::OperatorTargets read_targets(const Json& object, TargetKeys keys, cons
 void write_targets(const mobility::OperatorTargets& t, TargetKeys keys, Json& object) {
   object["v1"] = t.v1_radps;
   object["v2"] = t.v2_radps;
+  object["v3"] = t.v3_radps;
   object["v4"] = t.v4_radps;
   object["v6"] = t.v6_radps;
   object["v7"] = t.v7_radps;

@@ -35,8 +35,8 @@ std::vector<std::string_view> gamepad_keys();
 mobility::GamepadState read_gamepad(const nlohmann::json& object, const Reading& how);
 void write_gamepad(const mobility::GamepadState& gamepad, nlohmann::json& object);
 
-// The console sends v1 v2 v4 v6 v7 gait gait_speed calibration_mode; a recording (and a scenario)
-// also joint_buttons [LB, LT, RB, RT], front_joint_target and rear_joint_target (rad).
+// The console sends v1 v2 v3 v4 v6 v7 gait gait_speed calibration_mode; a recording (and a
+// scenario) also joint_buttons [LB, LT, RB, RT], front_joint_target and rear_joint_target (rad).
 enum class TargetKeys { kConsole, kRecording };
 std::vector<std::string_view> target_keys(TargetKeys keys);
 // A key left out is 0, "none", false, no joint target.

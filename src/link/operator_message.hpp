@@ -47,7 +47,7 @@ struct GamepadMessage {
   bool operator==(const GamepadMessage&) const = default;
 };
 
-// {"type":"targets", …}: the mapping's output directly (v1 v2 v4 v6 v7 gait gait_speed
+// {"type":"targets", …}: the mapping's output directly (v1 v2 v3 v4 v6 v7 gait gait_speed
 // calibration_mode; joint buttons and joint targets are not the console's). A key left out means
 // 0, "none", false: each message is complete, so a lost one cannot leave a stale value behind.
 struct TargetsMessage {

@@ -25,6 +25,7 @@ Json motor_json(const driver::MotorStatus& motor) {
 Json velocities_json(const driver::TargetStatus& t) {
   return {{"v1_radps", t.v1_radps},
           {"v2_radps", t.v2_radps},
+          {"v3_radps", t.v3_radps},
           {"v4_radps", t.v4_radps},
           {"v6_radps", t.v6_radps},
           {"v7_radps", t.v7_radps}};

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "runner/soil_metrics.hpp"
+
 namespace marsokhod::runner {
 namespace {
 
@@ -28,8 +30,14 @@ const std::vector<std::string>& run_metric_names() {
       "odometry_position_sigma_m", "wheel_odometry_position_error_m",
       "wheel_odometry_heading_error_rad", "max_roll_rad", "max_pitch_rad", "tip_over_faults",
       "stuck_faults", "first_tip_over_s", "first_stuck_s", "other_faults", "missions_started",
-      "missions_reached", "missions_aborted", "mission_corrections", "final_mission_progress"};
-  return names;
+      "missions_reached", "missions_aborted", "mission_corrections", "final_mission_progress",
+      "max_lateral_speed_mps"};
+  static const std::vector<std::string> with_soil = [] {
+    std::vector<std::string> all = names;
+    all.insert(all.end(), soil_metric_names().begin(), soil_metric_names().end());
+    return all;
+  }();
+  return with_soil;
 }
 
 const std::vector<std::string>& phase_metric_names() {
@@ -39,7 +47,7 @@ const std::vector<std::string>& phase_metric_names() {
       "max_voltage_drop_v", "final_front_joint_rad", "final_rear_joint_rad",
       "final_joint_error_rad", "max_joint_error_rad", "max_joint_bound_excess_rad",
       "min_front_joint_rad", "max_front_joint_rad", "min_rear_joint_rad", "max_rear_joint_rad",
-      "gait_state_changes"};
+      "gait_state_changes", "max_lateral_speed_mps"};
   return names;
 }
 
@@ -93,7 +101,8 @@ Metrics::Snapshot Metrics::snapshot(const Session& session, double time_s) const
 
 void Metrics::observe_phases(const Session& session, double time_s,
                              std::optional<double> voltage_drop_v, double joint_error_rad,
-                             double bound_excess_rad, const std::array<double, 2>& joint_rad) {
+                             double bound_excess_rad, const std::array<double, 2>& joint_rad,
+                             double lateral_speed_mps) {
   for (PhaseWindow& w : phases_) {
     if (!w.start && time_s >= w.phase.from_s - kTimeEpsilonS) w.start = snapshot(session, time_s);
     if (!w.start || w.end) continue;
@@ -103,6 +112,7 @@ void Metrics::observe_phases(const Session& session, double time_s,
     }
     w.max_joint_error_rad = std::max(w.max_joint_error_rad, joint_error_rad);
     w.max_bound_excess_rad = std::max(w.max_bound_excess_rad, bound_excess_rad);
+    w.max_lateral_speed_mps = std::max(w.max_lateral_speed_mps, lateral_speed_mps);
     for (std::size_t j = 0; j < 2; ++j) {
       w.min_joint_rad[j] = std::min(w.min_joint_rad[j], joint_rad[j]);
       w.max_joint_rad[j] = std::max(w.max_joint_rad[j], joint_rad[j]);
@@ -134,6 +144,11 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   max_bound_excess_rad_ = std::max(max_bound_excess_rad_, bound_excess_rad);
   max_roll_rad_ = std::max(max_roll_rad_, std::abs(t.roll_pitch_yaw_rad[0]));
   max_pitch_rad_ = std::max(max_pitch_rad_, std::abs(t.roll_pitch_yaw_rad[1]));
+  // Sideways: the horizontal velocity along the centre unit's left axis (its heading + 90°).
+  const double yaw = t.roll_pitch_yaw_rad[2];
+  const double lateral_speed_mps =
+      std::abs(-std::sin(yaw) * t.velocity_mps[0] + std::cos(yaw) * t.velocity_mps[1]);
+  max_lateral_speed_mps_ = std::max(max_lateral_speed_mps_, lateral_speed_mps);
   for (double slip : t.wheel_slip_mps) {
     slip_sum_ += std::abs(slip);
     max_slip_mps_ = std::max(max_slip_mps_, std::abs(slip));
@@ -153,7 +168,8 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
     voltage_drop_v = s.reference_supply_v - s.supply_v;
   }
   observe_phases(session, now, voltage_drop_v, joint_error_rad(t), bound_excess_rad,
-                 {t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint]});
+                 {t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint]},
+                 lateral_speed_mps);
   follow_truth_odometry(session, cycle, truth_odometry_);
   if (!cycle.driver_running) return;
   observe_odometry(session);
@@ -244,6 +260,7 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
   m[p + "min_rear_joint_rad"] = extreme(w.min_joint_rad[1], end.joint_rad[1]);
   m[p + "max_rear_joint_rad"] = extreme(w.max_joint_rad[1], end.joint_rad[1]);
   m[p + "gait_state_changes"] = end.gait_state_changes - start.gait_state_changes;
+  m[p + "max_lateral_speed_mps"] = w.max_lateral_speed_mps;
 }
 
 void Metrics::observe_odometry(const Session& session) {
@@ -325,6 +342,7 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
   m["missions_aborted"] = missions_aborted_;
   m["mission_corrections"] = mission_corrections_;
   m["final_mission_progress"] = final_mission_progress_;
+  m["max_lateral_speed_mps"] = max_lateral_speed_mps_;
   m["malformed_frames"] = malformed_;
   m["brownouts"] = static_cast<double>(session.rover().electrics().brownout_count);
   m["driver_restarts"] = static_cast<double>(session.driver_restarts());
@@ -337,6 +355,7 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
     m["time_to_standstill_s"] = std::max(0.0, last_motion_s_ - *stop_mark_s_);
   }
   add_odometry_metrics(session, m);
+  add_soil_metrics(session, m["distance_m"], m);
   for (const PhaseWindow& w : phases_) {
     if (!w.start) continue;  // the run ended before the phase began
     add_phase_metrics(w, w.end ? *w.end : snapshot(session, session.time_s()), m);

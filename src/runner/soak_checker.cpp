@@ -40,7 +40,7 @@ void for_each_number(const driver::DriverStatus& s,
   visit("driving_scale", s.driving_scale);
   visit("walking_scale", s.walking_scale);
   for (const driver::TargetStatus* t : {&s.targets, &s.commands}) {
-    for (double v : {t->v1_radps, t->v2_radps, t->v4_radps, t->v6_radps, t->v7_radps}) {
+    for (double v : {t->v1_radps, t->v2_radps, t->v3_radps, t->v4_radps, t->v6_radps, t->v7_radps}) {
       visit("targets/commands", v);
     }
   }

@@ -21,8 +21,8 @@ std::string telemetry_header() {
   std::string h =
       "t_s,driver_running,mode,startup_phase,supply_v,reference_supply_v,yaw_rate_radps,"
       "accel1_mps2,accel2_mps2,accel3_mps2,front_tilt_rad,rear_tilt_rad,slope_rad,max_duty,"
-      "driving_scale,walking_scale,target_v1,target_v2,target_v4,target_v6,target_v7,cmd_v1,"
-      "cmd_v2,cmd_v4,cmd_v6,cmd_v7,gait,gait_state,gait_speed,rho_f,rho_r,front_min_rad,"
+      "driving_scale,walking_scale,target_v1,target_v2,target_v3,target_v4,target_v6,target_v7,"
+      "cmd_v1,cmd_v2,cmd_v3,cmd_v4,cmd_v6,cmd_v7,gait,gait_state,gait_speed,rho_f,rho_r,front_min_rad,"
       "front_max_rad,rear_min_rad,rear_max_rad,operator_timeout,faults,malformed_frames,"
       "missed_responses";
   for (const char* motor : kMotorNames) {
@@ -45,9 +45,10 @@ std::string telemetry_row(double time_s, bool running, const driver::DriverStatu
                    static_cast<double>(s.startup_phase), s.supply_v, s.reference_supply_v,
                    s.yaw_rate_radps, s.accel_mps2[0], s.accel_mps2[1], s.accel_mps2[2],
                    s.front_tilt_rad, s.rear_tilt_rad, s.slope_rad, s.max_duty, s.driving_scale,
-                   s.walking_scale, s.targets.v1_radps, s.targets.v2_radps, s.targets.v4_radps,
-                   s.targets.v6_radps, s.targets.v7_radps, s.commands.v1_radps,
-                   s.commands.v2_radps, s.commands.v4_radps, s.commands.v6_radps,
+                   s.walking_scale, s.targets.v1_radps, s.targets.v2_radps, s.targets.v3_radps,
+                   s.targets.v4_radps, s.targets.v6_radps, s.targets.v7_radps,
+                   s.commands.v1_radps, s.commands.v2_radps, s.commands.v3_radps,
+                   s.commands.v4_radps, s.commands.v6_radps,
                    s.commands.v7_radps, static_cast<double>(s.gait),
                    static_cast<double>(s.gait_state), s.gait_speed, s.front_axle_factor,
                    s.rear_axle_factor, s.joint_bounds.front_min_rad, s.joint_bounds.front_max_rad,

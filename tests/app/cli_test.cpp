@@ -90,7 +90,7 @@ TEST(Cli, ABrokenScenarioFileIsAUsageErrorNamingTheKey) {
 }
 
 TEST(Cli, ANegativeSeedIsRefusedNotWrapped) {
-  for (const char* command : {"scenario", "run", "sim"}) {
+  for (const char* command : {"scenario", "run", "sim", "slope-sweep"}) {
     std::vector<const char*> args = {"--config", kConfig.c_str(), command};
     if (std::string(command) == "scenario") args.push_back("straight-and-spin");
     args.push_back("--seed");
@@ -112,6 +112,21 @@ TEST(Cli, ANaNInAScenarioIsAOneLineUsageError) {
   EXPECT_NE(r.err.find("fault[0].frame_loss: is not a finite number (line 4)"), std::string::npos)
       << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+// The slope sweep needs a soft soil (its angle of repose bounds the sweep) and sane numbers.
+TEST(Cli, SlopeSweepRefusesRigidGroundAndBadNumbers) {
+  Result r = cli({"--config", kConfig.c_str(), "slope-sweep", "--ground", "hard"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--ground hard is not a soft soil; use soft-sand or lunar-soil"),
+            std::string::npos)
+      << r.err;
+  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--drive", "3.0"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("exceeds max_drive_speed_radps 2.25"), std::string::npos) << r.err;
+  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--step", "0"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--step"), std::string::npos) << r.err;
 }
 
 TEST(Cli, TheShippedScenariosAreListed) {

@@ -75,5 +75,38 @@ TEST(MotionControllerGait, AJointHeldByAGaitIsPulledInsideTheSlantBound) {
   }
 }
 
+// The operator's v3ᵈ (chapter 5.2) reaches the wheels as m3·v3: (4.14) ramps v3 toward the
+// target (μ = 2/s: after 640 cycles, 10 s, within 1e-6 of it), and ŵ is +v3 on the left-rear and
+// right-front wheels, −v3 on the left-front and right-rear ones, 0 on the centre wheels and the
+// joints; nothing else is asked for, so κ = 1 and the wheels get exactly that.
+TEST(MotionControllerDriving, DriftTargetDrivesTheExteriorWheelsAgainstEachOther) {
+  const Params params;
+  MotionController controller(params);
+  MotorVector p{};
+  p[kFrontJoint] = -1.2121;
+  p[kRearJoint] = 1.2121;
+  controller.reset_joint_positions(p);
+  const RuntimeSettings settings = runtime_settings_from(params);
+  MotionInput input;
+  input.period_s = params.cycle.period_s;
+  input.shaft_position_rad = p;
+  input.reference_supply_v = 24.0;
+  input.targets.v3_radps = -0.8;
+  DriverStatus status;
+  for (int k = 0; k < 640; ++k) controller.update(input, settings, status);
+  const double v3 = status.commands.v3_radps;
+  EXPECT_NEAR(v3, -0.8, 1e-6);
+  EXPECT_EQ(status.driving_scale, 1.0);
+  EXPECT_EQ(status.motors[kBackLeft].commanded_radps, v3);
+  EXPECT_EQ(status.motors[kFrontRight].commanded_radps, v3);
+  EXPECT_EQ(status.motors[kFrontLeft].commanded_radps, -v3);
+  EXPECT_EQ(status.motors[kBackRight].commanded_radps, -v3);
+  for (std::size_t motor : {kCenterLeft, kCenterRight, kFrontJoint, kRearJoint}) {
+    EXPECT_EQ(status.motors[motor].commanded_radps, 0.0) << kMotorNames[motor];
+  }
+  EXPECT_EQ(status.commands.v1_radps, 0.0);
+  EXPECT_EQ(status.commands.v4_radps, 0.0);
+}
+
 }  // namespace
 }  // namespace marsokhod::driver

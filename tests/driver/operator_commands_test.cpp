@@ -53,6 +53,11 @@ TEST(OperatorCommands, NumbersOutOfRangeNameTheFieldAndTheRange) {
 TEST(OperatorCommands, TargetsAreCheckedAgainstTheParams) {
   mobility::OperatorTargets t;
   EXPECT_FALSE(check_targets(t, kParams));
+  t.v3_radps = 1.0;  // max_drift_speed_radps
+  EXPECT_FALSE(check_targets(t, kParams));
+  t.v3_radps = -1.01;
+  EXPECT_EQ(check_targets(t, kParams)->field, "v3");
+  t.v3_radps = 0.0;
   t.v4_radps = -1.01;
   EXPECT_EQ(check_targets(t, kParams)->field, "v4");
   t.v4_radps = 0.0;

@@ -48,6 +48,7 @@ TEST(CommandJson, EveryFieldOfAnOperatorInputRoundTrips) {
   mobility::OperatorTargets& t = targets.targets.emplace();
   t.v1_radps = 2.25;
   t.v2_radps = -1.5;
+  t.v3_radps = -0.75;
   t.v4_radps = 0.125;
   t.v6_radps = -2.827;
   t.v7_radps = 1e-7;
@@ -129,7 +130,7 @@ TEST(CommandJson, ARecordingIsReadAsItWasWrittenOutOfRangeValuesIncluded) {
 TEST(CommandJson, BadInputIsRefusedNamingTheField) {
   EXPECT_EQ(input_error(R"({"targets":{"v1":"fast"}})"), "targets.v1");
   EXPECT_EQ(input_error(R"({"targets":{"gait":"hop"}})"), "targets.gait");
-  EXPECT_EQ(input_error(R"({"targets":{"v3":0}})"), "targets.v3");
+  EXPECT_EQ(input_error(R"({"targets":{"v5":0}})"), "targets.v5");  // m5 is reserved
   EXPECT_EQ(input_error(R"({"targets":{"joint_buttons":[true]}})"), "targets.joint_buttons");
   EXPECT_EQ(input_error(R"({"targets":{"joint_buttons":[1,0,0,0]}})"), "targets.joint_buttons[0]");
   EXPECT_EQ(input_error(R"({"targets":{"front_joint_target":null}})"),

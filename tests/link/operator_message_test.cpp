@@ -160,7 +160,7 @@ TEST(OperatorMessage, RejectsMissingOrUnknownTypes) {
 TEST(OperatorMessage, RejectsUnknownFieldsInEveryMessage) {
   EXPECT_EQ(error_of(R"({"type":"stop","now":true})").field, "now");
   EXPECT_EQ(error_of(R"({"type":"ping","t":1})").field, "t");
-  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v3":0})").field, "v3");
+  EXPECT_EQ(error_of(R"({"type":"targets","seq":1,"sent_ms":0,"v5":0})").field, "v5");
   EXPECT_EQ(error_of(R"({"type":"configure","max_drop":1})").field, "max_drop");
   EXPECT_EQ(error_of(R"({"type":"configure","behaviours":{"gaits":true}})").field,
             "behaviours.gaits");

@@ -33,8 +33,8 @@ driver::DriverStatus sample_status() {
   s.max_duty = 0.75;
   s.driving_scale = 0.5;
   s.walking_scale = 0.25;
-  s.targets = {1.0, 0.5, 0.25, 0.125, -0.125};
-  s.commands = {0.5, 0.25, 0.0, 0.0, -0.0625};
+  s.targets = {1.0, 0.5, 0.75, 0.25, 0.125, -0.125};
+  s.commands = {0.5, 0.25, -0.375, 0.0, 0.0, -0.0625};
   s.gait = mobility::Gait::kFrontWheelWalking;
   s.gait_state = 1;
   s.gait_speed = -0.5;
@@ -78,6 +78,8 @@ TEST(StatusJson, CarriesEveryFieldUnderItsKey) {
   EXPECT_EQ(j["driving_scale"], 0.5);
   EXPECT_EQ(j["walking_scale"], 0.25);
   EXPECT_EQ(j["targets"]["v7_radps"], -0.125);
+  EXPECT_EQ(j["targets"]["v3_radps"], 0.75);
+  EXPECT_EQ(j["commands"]["v3_radps"], -0.375);
   EXPECT_EQ(j["commands"]["v1_radps"], 0.5);
   EXPECT_EQ(j["gait"]["id"], "front-wheel-walking");
   EXPECT_EQ(j["gait"]["name"], "front-wheel walking");

@@ -29,6 +29,8 @@ const BUTTON_KEYS = {
   KeyZ: 6,     // LT: extend the front joint
   KeyE: 5,     // RB: contract the rear joint
   KeyC: 7,     // RT: extend the rear joint
+  KeyR: 2,     // X: sideways drift m3, v3 > 0 (left-rear and right-front wheels forward)
+  KeyF: 0,     // A: sideways drift m3, v3 < 0
   Digit1: 12,  // d-pad up: rolking
   Digit2: 15,  // d-pad right: front-wheel walking
   Digit3: 14,  // d-pad left: rear-wheel walking

@@ -38,6 +38,8 @@ export interface TargetsInput {
   type: 'targets';
   v1?: number;
   v2?: number;
+  /** Sideways drift (m3, chapter 5.2) [rad/s]. */
+  v3?: number;
   v4?: number;
   v6?: number;
   v7?: number;
@@ -113,7 +115,7 @@ export interface ConfigureMessage {
   max_drop_v?: number;
   load_distribution?: LoadDistribution;
   behaviours?: Partial<Record<BehaviourName, boolean>>;
-  /** Scales v1ᵈ, v2ᵈ, v4ᵈ, in [0, 1]. */
+  /** Scales v1ᵈ, v2ᵈ, v3ᵈ, v4ᵈ, in [0, 1]. */
   speed_scale?: number;
 }
 
@@ -240,6 +242,7 @@ export interface MotorStatus {
 export interface Velocities {
   v1_radps: StatusNumber;
   v2_radps: StatusNumber;
+  v3_radps: StatusNumber;
   v4_radps: StatusNumber;
   v6_radps: StatusNumber;
   v7_radps: StatusNumber;

@@ -84,7 +84,8 @@ export function missionTime(seconds) {
 /** @param {Velocities | undefined} v */
 function velocities(v) {
   if (!v) return '–';
-  return `v1 ${fixed(v.v1_radps, 2)} v2 ${fixed(v.v2_radps, 2)} v4 ${fixed(v.v4_radps, 2)} ` +
+  return `v1 ${fixed(v.v1_radps, 2)} v2 ${fixed(v.v2_radps, 2)} v3 ${fixed(v.v3_radps, 2)} ` +
+    `v4 ${fixed(v.v4_radps, 2)} ` +
     `v6 ${fixed(v.v6_radps, 2)} v7 ${fixed(v.v7_radps, 2)} rad/s`;
 }
 

@@ -82,6 +82,7 @@ test('the keyboard reads as a standard gamepad', () => {
   const pressed = (codes) => keyboardReading(codes, false).buttons
     .flatMap((down, i) => (down ? [i] : []));
   assert.deepEqual(pressed(['KeyQ', 'KeyZ', 'KeyE', 'KeyC']), [4, 5, 6, 7]);
+  assert.deepEqual(pressed(['KeyF', 'KeyR']), [0, 2], 'R, F: X, A (sideways drift m3)');
   assert.deepEqual(pressed(['Digit1', 'Digit2', 'Digit3', 'Digit4']), [12, 13, 14, 15]);
   assert.deepEqual(pressed(['Digit5', 'Digit0', 'KeyP']), [1, 3, 8]);
   assert.deepEqual(pressed(['KeyX', 'Enter']), [], 'unmapped keys do nothing');

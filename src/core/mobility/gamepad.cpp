@@ -79,6 +79,7 @@ void validate(const OperatorParams& params) {
   }
   require_non_negative(params.max_drive_speed_radps, "max_drive_speed_radps");
   require_non_negative(params.max_spin_speed_radps, "max_spin_speed_radps");
+  require_non_negative(params.max_drift_speed_radps, "max_drift_speed_radps");
   require_non_negative(params.max_trench_speed_radps, "max_trench_speed_radps");
   require_non_negative(params.joint_button_speed_radps, "joint_button_speed_radps");
   require_non_negative(params.calibration_duty, "calibration_duty");
@@ -105,6 +106,8 @@ OperatorTargets map_gamepad(const GamepadState& gamepad, const OperatorParams& p
     // −0.0 would be harmless but odd in logs: 0 − x keeps a released stick at +0.
     targets.v1_radps = 0.0 - axes[kLeftStickY] * params.max_drive_speed_radps;
     targets.v2_radps = 0.0 - axes[kLeftStickX] * params.max_spin_speed_radps;
+    targets.v3_radps = button_pair(gamepad.buttons[kButtonLeft], gamepad.buttons[kButtonBottom],
+                                   params.max_drift_speed_radps);
     targets.v4_radps = axes[kRightStickX] * params.max_trench_speed_radps;
     targets.gait_speed = 0.0 - axes[kRightStickY];
     const JointButtons& joint = targets.joint_buttons;

@@ -6,6 +6,9 @@
 //                                   drives the left side forward, the right side backward)
 //   right stick up/down (−axis 3)   gait speed s ∈ [−1, 1], up = forward through the gait's cycle
 //   right stick x (axis 2)          v4ᵈ trench, right = front-right wheel forward (m4)
+//   X (button 2, left) / A (0)      v3ᵈ sideways drift (m3, chapter 5.2) = +/− drift speed:
+//                                   X turns the left-rear and right-front wheels forward, the
+//                                   left-front and right-rear backward; A the reverse
 //   d-pad up / right / down / left  rolking / front-wheel walking / worm-like / rear-wheel walking
 //   Y (button 3, top)               rolking with extended base
 //   B (button 1, right)             no gait (wheel walking off); wins over a d-pad press
@@ -16,7 +19,7 @@
 // A selected gait stays selected until another gait button or B; two gait buttons at once change
 // nothing. In calibration mode every velocity is 0, the gait is none, and only the four front
 // buttons count: calibration_duties() turns them into d6, d7 = ±calibration_duty (Procedure
-// 4.3's d6 = d7 = −0.08 is LT + RB). Both buttons of one joint at once cancel.
+// 4.3's d6 = d7 = −0.08 is LT + RB). Both buttons of one joint at once cancel, as X and A do.
 // Dead zone: |axis| < dead_zone reads 0; above it (|axis| − dead_zone)/(1 − dead_zone) keeps the
 // sign, so the output is continuous and reaches ±1 at full deflection.
 #pragma once
@@ -86,6 +89,7 @@ struct GamepadMemory {
 struct OperatorTargets {
   double v1_radps = 0.0;  // drive straight (m1), > 0 forward
   double v2_radps = 0.0;  // spin (m2), > 0 counter-clockwise seen from above
+  double v3_radps = 0.0;  // sideways drift (m3), > 0 left-rear and right-front wheels forward
   double v4_radps = 0.0;  // trench (m4), > 0 front-right wheel forward
   double v6_radps = 0.0;  // front joint (m6), > 0 contracts
   double v7_radps = 0.0;  // rear joint (m7), > 0 extends

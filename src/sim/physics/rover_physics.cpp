@@ -348,6 +348,10 @@ void RoverPhysics::place_on_ground() {
   mj_forward(&m, &d);
 }
 
+const soil::SoftSoil* RoverPhysics::soft_soil() const {
+  return impl_->soft_soil ? &*impl_->soft_soil : nullptr;
+}
+
 void RoverPhysics::level_soil() {
   if (impl_->soft_soil) impl_->soft_soil->level();
 }

@@ -22,6 +22,9 @@
 #include "sim/physics/terrain.hpp"
 
 namespace marsokhod::sim {
+namespace soil {
+class SoftSoil;
+}
 
 // What an ideal accelerometer and gyro on the center unit read, in the sensor axes of chapter 3.3
 // (x1 forward, x2 left, x3 up; equal to the robot's axes with αf = αr).
@@ -103,6 +106,8 @@ class RoverPhysics {
   // ruts, compaction and books cleared, the wheels' shear states with them; nothing on rigid
   // ground. (A sandbox raked level before the rover is set down on it again.)
   void level_soil();
+  // The soft soil under the wheels (its grid: ruts, volumes), nullptr on rigid ground.
+  const soil::SoftSoil* soft_soil() const;
   // A weight strapped to a wheel's rim (Procedure 4.13): a gravity torque peak·sin φ on the
   // wheel's hinge, φ its angle (0: the weight at the top). 0 removes it. The stand keeps the
   // chassis level, so φ is measured from the vertical.

@@ -93,6 +93,7 @@ class SimulatedRover {
   void place_on_ground() { physics_.place_on_ground(); }
   bool on_stand() const { return physics_.on_stand(); }
   void level_soil() { physics_.level_soil(); }  // RoverPhysics::level_soil
+  const soil::SoftSoil* soft_soil() const { return physics_.soft_soil(); }  // nullptr: rigid
   void strap_weight(std::size_t wheel, double peak_torque_nm) {
     physics_.strap_weight(wheel, peak_torque_nm);
   }

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace marsokhod::sim::soil {
 namespace {
@@ -129,6 +130,43 @@ void SoilGrid::level() {
   std::fill(sinkage_.begin(), sinkage_.end(), 0.0);
   std::fill(compaction_.begin(), compaction_.end(), 0.0);
   volumes_ = SoilVolumes{};
+}
+
+double SoilGrid::max_depth_m(double x0_m, double y0_m, double x1_m, double y1_m) const {
+  // Cell i's centre lies in [a, b] for ceil((a − o)/cell − 0.5) ≤ i ≤ floor((b − o)/cell − 0.5).
+  const auto range = [this](double low_m, double high_m, double origin_m, int cells) {
+    const double c = spec_.cell_m;
+    const double first = std::ceil((low_m - origin_m) / c - 0.5);
+    const double last = std::floor((high_m - origin_m) / c - 0.5);
+    return std::pair{static_cast<int>(std::clamp(first, 0.0, static_cast<double>(cells))),
+                     static_cast<int>(std::clamp(last, -1.0, cells - 1.0))};
+  };
+  const auto [x_first, x_last] = range(x0_m, x1_m, spec_.origin_x_m, spec_.cells_x);
+  const auto [y_first, y_last] = range(y0_m, y1_m, spec_.origin_y_m, spec_.cells_y);
+  double depth = 0.0;
+  for (int iy = y_first; iy <= y_last; ++iy) {
+    for (int ix = x_first; ix <= x_last; ++ix) {
+      const std::size_t i = index(ix, iy);
+      depth = std::max(depth, initial_[i] - surface_[i]);
+    }
+  }
+  return depth;
+}
+
+double SoilGrid::compacted_area_m2() const {
+  const auto cells = std::count_if(compaction_.begin(), compaction_.end(),
+                                   [](double compaction_m) { return compaction_m > 0.0; });
+  return static_cast<double>(cells) * spec_.cell_m * spec_.cell_m;
+}
+
+Earthwork SoilGrid::earthwork() const {
+  Earthwork e;
+  const double area = spec_.cell_m * spec_.cell_m;
+  for (std::size_t i = 0; i < surface_.size(); ++i) {
+    const double change = surface_[i] - initial_[i];
+    (change < 0.0 ? e.cut_m3 : e.fill_m3) += std::abs(change) * area;
+  }
+  return e;
 }
 
 Footprint SoilGrid::press(const Cylinder& wheel) {

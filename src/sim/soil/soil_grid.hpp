@@ -42,6 +42,14 @@ struct GridSpec {
 // Throws std::invalid_argument naming the field (cell 1 mm – 10 cm, 2 – 4096 cells a side).
 void validate(const GridSpec& spec);
 
+// The ground's change from its initial surface, as earthworks count it: cut_m3 = Σ max(0,
+// initial − surface)·cell², fill_m3 = Σ max(0, surface − initial)·cell². Unlike SoilVolumes'
+// books it does not count soil moved back and forth (a bank pushed up and slid back).
+struct Earthwork {
+  double cut_m3 = 0.0;
+  double fill_m3 = 0.0;
+};
+
 struct SoilVolumes {
   double cut_m3 = 0.0;        // soil taken from cells (pressed, excavated, slid off a slope)
   double fill_m3 = 0.0;       // soil added to cells
@@ -93,6 +101,14 @@ class SoilGrid {
   // Raked level: every cell back at its initial surface, no sinkage or compaction, the books at 0.
   void level();
   const SoilVolumes& volumes() const { return volumes_; }
+  // The deepest a cell's surface lies below its initial level among the cells whose centres fall
+  // inside [x0, x1] × [y0, y1] (a rut's or a trench's depth, vertical); 0 where none lies lower
+  // or no centre falls inside.
+  double max_depth_m(double x0_m, double y0_m, double x1_m, double y1_m) const;
+  // The area of the cells compacted in place (compaction_m > 0): compacted_m3 over it is the
+  // mean compaction of the ground the wheels pressed.
+  double compacted_area_m2() const;
+  Earthwork earthwork() const;
 
   // Cuts the cells under the cylinder down to its rim; returns the contact patch (the second form
   // fills `footprint`, keeping its list's capacity from step to step).

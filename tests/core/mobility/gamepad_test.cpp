@@ -83,6 +83,23 @@ TEST(Gamepad, RightStickSetsGaitSpeedAndTrench) {
   EXPECT_EQ(map_gamepad(pad_with_axis(kRightStickX, 1.0), kParams).v4_radps, 1.0);
 }
 
+// X and A: the sideways drift m3 at ±max_drift_speed_radps (1.0 rad/s) while held; both cancel,
+// and calibration mode silences them like every other velocity.
+TEST(Gamepad, XAndADriftSideways) {
+  EXPECT_EQ(map_gamepad(pad_with_buttons({kButtonLeft}), kParams).v3_radps, 1.0);
+  EXPECT_EQ(map_gamepad(pad_with_buttons({kButtonBottom}), kParams).v3_radps, -1.0);
+  EXPECT_EQ(map_gamepad(pad_with_buttons({kButtonLeft, kButtonBottom}), kParams).v3_radps, 0.0);
+  OperatorParams slow = kParams;
+  slow.max_drift_speed_radps = 0.25;
+  EXPECT_EQ(map_gamepad(pad_with_buttons({kButtonBottom}), slow).v3_radps, -0.25);
+  const OperatorTargets calibrating = map_gamepad(pad_with_buttons({kSelect}), kParams);
+  EXPECT_TRUE(calibrating.calibration_mode);
+  EXPECT_EQ(map_gamepad(pad_with_buttons({kButtonLeft}), kParams, calibrating.memory).v3_radps,
+            0.0);
+  slow.max_drift_speed_radps = -1.0;
+  EXPECT_THROW(map_gamepad(GamepadState{}, slow), std::invalid_argument);
+}
+
 // d-pad up/right/down/left and Y select the five gaits; the choice stays after release; B clears
 // it; two gait buttons at once change nothing.
 TEST(Gamepad, GaitButtonsSelectAndLatch) {

@@ -33,6 +33,12 @@ void expect_balanced(const SoilGrid& grid) {
   const SoilVolumes& v = grid.volumes();
   EXPECT_NEAR(net_volume_m3(grid), v.fill_m3 - v.cut_m3, 1e-12);
   EXPECT_NEAR(v.cut_m3 - v.fill_m3, v.compacted_m3, 1e-12);
+  // The earthwork's net is the books' net; its cut and fill are at most the books' (which also
+  // count soil moved and moved back).
+  const Earthwork e = grid.earthwork();
+  EXPECT_NEAR(e.cut_m3 - e.fill_m3, v.compacted_m3, 1e-12);
+  EXPECT_LE(e.cut_m3, v.cut_m3 + 1e-15);
+  EXPECT_LE(e.fill_m3, v.fill_m3 + 1e-15);
 }
 
 // A wheel pressed 2 cm into flat sand: the cells under it go down to its rim, their plastic
@@ -67,6 +73,36 @@ TEST(SoilGrid, PressYieldsToTheRimAndConservesVolume) {
     previous_cut = cut;
   }
   EXPECT_EQ(previous_cut, 0.0);
+  expect_balanced(grid);
+}
+
+// The rut's depth and the compacted area read back what a press left: the wheel pressed 2 cm in
+// cuts the cells under its lowest point (centres 0.5 cm off it) to the rim computed above; a box
+// around the wheel finds that depth, a box beside it (only the raised rim) 0, a box between
+// cell centres 0. The compacted cells lie in the contact patch, and compacted_m3 over their area
+// is their mean compaction, at most half (displaced_fraction 0.5) of the 2 cm.
+TEST(SoilGrid, DepthAndCompactedAreaReadTheRut) {
+  SoilGrid grid(small_grid(), dry_sand(), flat);
+  EXPECT_EQ(grid.max_depth_m(-0.5, -0.3, 0.5, 0.3), 0.0);
+  EXPECT_EQ(grid.compacted_area_m2(), 0.0);
+  EXPECT_EQ(grid.earthwork().cut_m3, 0.0);
+  EXPECT_EQ(grid.earthwork().fill_m3, 0.0);
+  const Cylinder wheel{{0.0, 0.0, 0.115 - 0.02}, {0.0, 1.0, 0.0}, 0.115, 0.15};
+  const Footprint footprint = grid.press(wheel);
+  const double rim = 0.095 - std::sqrt(0.115 * 0.115 - 0.005 * 0.005);
+  EXPECT_NEAR(grid.max_depth_m(-0.1, -0.1, 0.1, 0.1), -rim, 1e-12);
+  EXPECT_EQ(grid.max_depth_m(-0.1, 0.12, 0.1, 0.2), 0.0);
+  EXPECT_EQ(grid.max_depth_m(0.001, 0.001, 0.004, 0.004), 0.0);  // no cell centre inside
+  EXPECT_EQ(grid.max_depth_m(5.0, 5.0, 6.0, 6.0), 0.0);          // beyond the grid
+  const double area = grid.compacted_area_m2();
+  EXPECT_GT(area, 0.0);
+  EXPECT_LE(area, static_cast<double>(footprint.contact_cells.size()) * kCellM * kCellM);
+  const double mean_compaction = grid.volumes().compacted_m3 / area;
+  EXPECT_GT(mean_compaction, 0.0);
+  EXPECT_LE(mean_compaction, 0.5 * 0.02 + 1e-12);
+  // The first press moved no soil twice: the earthwork is the books.
+  EXPECT_NEAR(grid.earthwork().cut_m3, grid.volumes().cut_m3, 1e-15);
+  EXPECT_NEAR(grid.earthwork().fill_m3, grid.volumes().fill_m3, 1e-15);
   expect_balanced(grid);
 }
 

@@ -1,0 +1,115 @@
+#include "app/slope_sweep_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <ostream>
+
+#include "runner/slope_sweep.hpp"
+
+namespace marsokhod::app {
+namespace {
+
+constexpr int kUsageError = 2;
+
+// [KG92] (chapter 2's Marsokhod trials on granular slopes): what each way of climbing reached.
+const char* kg92_figure(mobility::Gait gait) {
+  return gait == mobility::Gait::kNone ? "20°" : "25–30° (wheel walking)";
+}
+
+}  // namespace
+
+CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args) {
+  CLI::App* cmd = cli.add_subcommand(
+      "slope-sweep",
+      "the steepest soft-soil slope the simulated rover climbs by driving and by each gait");
+  cmd->add_option("--ground", args.ground, "a soft soil: soft-sand (default) or lunar-soil");
+  cmd->add_option("--distance", args.distance_m,
+                  "metres along the slope that count as climbed (default 0.1)")
+      ->check(CLI::Range(0.001, 100.0));
+  cmd->add_option("--time", args.time_s, "seconds of driving or walking a climb gets (default 40)")
+      ->check(CLI::Range(1.0, 3600.0));
+  cmd->add_option("--step", args.step_deg, "the angles' resolution in degrees (default 0.5)")
+      ->check(CLI::Range(0.1, 10.0));
+  cmd->add_option("--drive", args.drive_radps, "v1 when driving, rad/s (default 1.0)")
+      ->check(CLI::Range(0.01, 100.0));
+  return cmd;
+}
+
+int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConfig& config,
+                            std::ostream& out, std::ostream& err) {
+  const std::optional<sim::Material> ground = sim::material_named(args.ground);
+  if (!ground || !ground->soil) {
+    err << "marsokhod slope-sweep: --ground " << args.ground
+        << " is not a soft soil; use soft-sand or lunar-soil\n";
+    return kUsageError;
+  }
+  if (args.drive_radps > config.params.operator_input.max_drive_speed_radps) {
+    err << "marsokhod slope-sweep: --drive " << args.drive_radps << " exceeds max_drive_speed_radps "
+        << config.params.operator_input.max_drive_speed_radps << "\n";
+    return kUsageError;
+  }
+  const double repose_deg = ground->soil->repose_angle_rad * 180.0 / std::numbers::pi;
+  runner::ClimbSpec spec;
+  spec.ground = *ground;
+  spec.drive_radps = args.drive_radps;
+  spec.time_s = args.time_s;
+  spec.distance_m = args.distance_m;
+  spec.seed = args.seed;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "slope sweep on %s (angle of repose %.1f°), unit %llu: climbed = %.2f m along the "
+                "slope in %.0f s (driving at v1 = %.2f rad/s, gaits at full speed), %.1f° steps\n",
+                args.ground.c_str(), repose_deg, static_cast<unsigned long long>(args.seed),
+                args.distance_m, args.time_s, args.drive_radps, args.step_deg);
+  out << line << "| mode | steepest climbed | [KG92] | angles tried (° climbed/failed, advance) |\n"
+      << "|---|---|---|---|\n";
+  std::optional<double> driving_deg, best_gait_deg;
+  bool past_repose = false;
+  try {
+    for (const mobility::Gait gait : mobility::kAllGaits) {
+      std::string tried;
+      const runner::SteepestClimb found = runner::find_steepest(
+          [&](double angle_deg) {
+            double advanced = 0.0;
+            const bool climbed = runner::run_slope_climb(gait, angle_deg, spec, config.params,
+                                                         &config.nominal, &advanced);
+            char entry[64];
+            std::snprintf(entry, sizeof entry, "%s%.1f %s %.3f m", tried.empty() ? "" : ", ",
+                          angle_deg, climbed ? "✓" : "✗", advanced);
+            tried += entry;
+            return climbed;
+          },
+          repose_deg, args.step_deg);
+      const std::string mode =
+          gait == mobility::Gait::kNone ? "driving" : std::string(mobility::gait_name(gait));
+      std::string steepest = "none";
+      if (found.steepest_deg) {
+        std::snprintf(line, sizeof line, "%.1f°%s", *found.steepest_deg,
+                      found.climbs_at_max ? " (the angle of repose)" : "");
+        steepest = line;
+      }
+      out << "| " << mode << " | " << steepest << " | " << kg92_figure(gait) << " | " << tried
+          << " |" << std::endl;
+      const double reached = found.steepest_deg.value_or(-1.0);
+      if (gait == mobility::Gait::kNone) {
+        driving_deg = reached;
+      } else if (!best_gait_deg || reached > *best_gait_deg) {
+        best_gait_deg = reached;
+      }
+      past_repose = past_repose || reached > repose_deg;
+    }
+  } catch (const std::exception& e) {
+    err << "marsokhod slope-sweep: " << e.what() << "\n";
+    return kUsageError;
+  }
+  out << "wheel walking out-climbs driving: "
+      << (best_gait_deg && driving_deg && *best_gait_deg > *driving_deg ? "yes" : "no") << "\n"
+      << "nothing climbed past the angle of repose: " << (past_repose ? "no" : "yes") << "\n";
+  return 0;
+}
+
+}  // namespace marsokhod::app

@@ -1,0 +1,34 @@
+// `marsokhod slope-sweep [--ground NAME] [--seed S] [--distance M] [--time S] [--step DEG]
+// [--drive V1]`: the steepest slope of a soft soil the simulated rover climbs by driving and by
+// each gait (runner/slope_sweep.hpp), printed as a table beside [KG92]'s figures.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+
+#include "config/loaded_config.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace marsokhod::app {
+
+struct SlopeSweepArgs {
+  std::string ground = "soft-sand";
+  std::uint64_t seed = 1;
+  double distance_m = 0.1;
+  double time_s = 40.0;
+  double step_deg = 0.5;
+  double drive_radps = 1.0;
+};
+
+// Adds the subcommand to `cli`, filling `args` (the caller adds --seed with its seed check).
+CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args);
+
+// 0 when the sweep ran (whatever it found), 2 for a bad argument.
+int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConfig& config,
+                            std::ostream& out, std::ostream& err);
+
+}  // namespace marsokhod::app
