@@ -184,7 +184,8 @@ ClientId ServerCore::add_client(const std::shared_ptr<WebSocketSession>& session
     ++stats_.connections;
     stats_.clients = clients_.size();
   }
-  send_to(client, hello_json(client, arbiter_.controller(), options_.calibration));
+  send_to(client, hello_json(client, arbiter_.controller(), options_.calibration,
+                                  velocity_limits(params_)));
   return client;
 }
 

@@ -1,5 +1,7 @@
 #include "link/server_messages.hpp"
 
+#include "core/navigation/mission.hpp"
+
 namespace marsokhod::link {
 namespace {
 
@@ -9,8 +11,13 @@ nlohmann::json optional_id(std::optional<ClientId> id) {
 
 }  // namespace
 
+VelocityLimits velocity_limits(const Params& params) {
+  return {navigation::max_velocity_mps(params), navigation::max_yaw_rate_radps(params)};
+}
+
 nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller,
-                          const config::CalibrationSource& calibration) {
+                          const config::CalibrationSource& calibration,
+                          const VelocityLimits& limits) {
   return {{"type", "hello"},
           {"protocol", kProtocolVersion},
           {"client_id", client},
@@ -19,7 +26,8 @@ nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller,
           {"calibration",
            {{"file", calibration.file.empty() ? nlohmann::json(nullptr)
                                               : nlohmann::json(calibration.file)},
-            {"procedures", calibration.procedures}}}};
+            {"procedures", calibration.procedures}}},
+          {"velocity_limits", {{"v_mps", limits.v_mps}, {"yaw_radps", limits.yaw_radps}}}};
 }
 
 nlohmann::json control_json(const ControlChange& change, ClientId recipient) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/configuration.hpp"
+#include "core/params.hpp"
 #include "link/control_arbiter.hpp"
 
 namespace marsokhod::link {
@@ -16,11 +17,22 @@ namespace marsokhod::link {
 // authorised by the session cookie (or Authorization: Bearer), not ?token=.
 inline constexpr int kProtocolVersion = 2;
 
-// {"type":"hello","protocol":1,"client_id":N,"controller":M|null,"read_only":bool}
+// The largest |v_mps| and |yaw_radps| a `velocity` message may ask for: navigation's
+// max_velocity_mps and max_yaw_rate_radps of the driver's parameters (r·v1ᵈ, r·v2ᵈ/(t/2)).
+struct VelocityLimits {
+  double v_mps = 0.0;
+  double yaw_radps = 0.0;
+};
+VelocityLimits velocity_limits(const Params& params);
+
+// {"type":"hello","protocol":1,"client_id":N,"controller":M|null,"read_only":bool,...}
 // `calibration` names the calibration file the driver loaded on top of the configuration (null
-// when it runs on the configuration's nominal values) and the procedures in it.
+// when it runs on the configuration's nominal values) and the procedures in it;
+// `velocity_limits` {"v_mps","yaw_radps"} the limits above, so that a console can scale its
+// sticks to them.
 nlohmann::json hello_json(ClientId client, std::optional<ClientId> controller,
-                          const config::CalibrationSource& calibration = {});
+                          const config::CalibrationSource& calibration,
+                          const VelocityLimits& limits);
 
 // {"type":"control","controller":M|null,"read_only":bool,"lost_control":bool,"reason":"…"},
 // as `recipient` sees it: lost_control is true for the client that held control before.

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/navigation/mission.hpp"
 #include "test_client.hpp"
 
 namespace marsokhod::link {
@@ -95,6 +96,10 @@ TEST_F(LinkServerTest, GreetsAClientWithTheRightToken) {
   EXPECT_GE(hello["client_id"].get<int>(), 1);
   EXPECT_TRUE(hello["controller"].is_null());
   EXPECT_EQ(hello["read_only"], true);
+  EXPECT_NEAR(hello["velocity_limits"]["v_mps"].get<double>(),
+              navigation::max_velocity_mps(params_), 1e-12);
+  EXPECT_NEAR(hello["velocity_limits"]["yaw_radps"].get<double>(),
+              navigation::max_yaw_rate_radps(params_), 1e-12);
   EXPECT_EQ(server_->stats().clients, 1U);
   EXPECT_NE(server_->console_url().find("/?token=" + std::string(kToken)), std::string::npos);
 }

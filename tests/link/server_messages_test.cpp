@@ -6,16 +6,29 @@
 namespace marsokhod::link {
 namespace {
 
-TEST(ServerMessages, HelloSaysWhoHoldsControlAndWhichCalibrationTheDriverLoaded) {
-  EXPECT_EQ(hello_json(3, std::nullopt),
+TEST(ServerMessages, HelloSaysWhoHoldsControlWhichCalibrationTheDriverLoadedAndTheVelocityLimits) {
+  const VelocityLimits limits{0.25, 0.5};
+  EXPECT_EQ(hello_json(3, std::nullopt, {}, limits),
             nlohmann::json::parse(
                 R"({"type":"hello","protocol":2,"client_id":3,"controller":null,"read_only":true,
-                    "calibration":{"file":null,"procedures":[]}})"));
-  EXPECT_EQ(hello_json(3, 1)["controller"], 1);
+                    "calibration":{"file":null,"procedures":[]},
+                    "velocity_limits":{"v_mps":0.25,"yaw_radps":0.5}})"));
+  EXPECT_EQ(hello_json(3, 1, {}, limits)["controller"], 1);
   const nlohmann::json calibrated =
-      hello_json(3, 1, config::CalibrationSource{"rover7.toml", {"voltage", "motor-scale"}});
+      hello_json(3, 1, config::CalibrationSource{"rover7.toml", {"voltage", "motor-scale"}}, limits);
   EXPECT_EQ(calibrated["calibration"]["file"], "rover7.toml");
   EXPECT_EQ(calibrated["calibration"]["procedures"], nlohmann::json({"voltage", "motor-scale"}));
+}
+
+TEST(ServerMessages, TheVelocityLimitsAreTheOnesTheVelocityMessageIsCheckedAgainst) {
+  // The default rover: r·v1ᵈ = 0.125 m · 2.25 rad/s and r·v2ᵈ/(t/2) = 0.125 m · 1.5 rad/s / 0.35 m.
+  Params params;
+  const VelocityLimits limits = velocity_limits(params);
+  EXPECT_NEAR(limits.v_mps, 0.125 * 2.25, 1e-12);
+  EXPECT_NEAR(limits.yaw_radps, 0.125 * 1.5 / 0.35, 1e-12);
+  // A slower operator limit is a slower console: the limits follow the parameters.
+  params.operator_input.max_drive_speed_radps = 1.0;
+  EXPECT_NEAR(velocity_limits(params).v_mps, 0.125, 1e-12);
 }
 
 TEST(ServerMessages, ControlTellsThePreviousControllerItLostControl) {

@@ -14,6 +14,17 @@
 
 export const AXIS_COUNT = 4;
 export const BUTTON_COUNT = 17;
+// The server's dead zone (`[operator] dead_zone`, docs/gamepad.md): |axis| below it reads 0.
+export const DEAD_ZONE = 0.1;
+
+// An axis as the server's map reads it (mobility::apply_dead_zone): 0 inside the dead zone, then
+// rescaled to reach ±1 at full deflection, continuous at its edge.
+/** @param {number} value  in [−1, 1] */
+export function applyDeadZone(value) {
+  const magnitude = Math.abs(value);
+  if (!(magnitude > DEAD_ZONE)) return 0;  // its edge too (no −0), and NaN
+  return Math.sign(value) * Math.min(1, (magnitude - DEAD_ZONE) / (1 - DEAD_ZONE));
+}
 
 /** @returns {GamepadReading} */
 export function neutralReading() {

@@ -25,7 +25,8 @@
 
 /**
  * Each event's `detail`.
- * @typedef {{ state: { state: LinkState }, hello: { calibration: CalibrationInfo | null },
+ * @typedef {{ state: { state: LinkState },
+ *   hello: { calibration: CalibrationInfo | null, velocityLimits: unknown },
  *   control: { message: ControlMessage }, stopped: { by: number, reason: string },
  *   status: { status: Status }, error: { text: string }, pong: { rtt_ms: number } }} LinkEvents
  */
@@ -209,7 +210,7 @@ export class Link extends EventTarget {
       case 'hello':
         this.clientId = message.client_id;
         this.applyControl(message);
-        this.emit('hello', { calibration: message.calibration ?? null });
+        this.emit('hello', { calibration: message.calibration ?? null, velocityLimits: message.velocity_limits });
         break;
       case 'control':
         this.applyControl(message);

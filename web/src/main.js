@@ -1,11 +1,12 @@
 // The console: connects to the link server, shows its status, and while it holds control sends
 // the operator's gamepad (or keyboard) reading at 20 Hz, continuously — the driver stops the
 // rover after 0.5 s without input (docs/operator-protocol.md, "Control"). While a mission runs
-// and the reading is neutral it sends a heartbeat at 20 Hz instead (mission.js).
+// and the reading is neutral it sends a heartbeat at 20 Hz instead (mission.js); in velocity mode
+// it sends `velocity` instead of the reading (velocity.js).
 
 import './style.css';
 import { Link, websocketUrl, exchangeToken, addressWithoutToken } from './link.js';
-import { pollGamepad, mergeReadings, gamepadMessage, neutralReading } from './gamepad.js';
+import { pollGamepad, mergeReadings, gamepadMessage, neutralReading, applyDeadZone } from './gamepad.js';
 import { Keyboard } from './keyboard.js';
 import { StatusPanel } from './status.js';
 import { Plots } from './plots.js';
@@ -13,6 +14,7 @@ import { RoverView } from './view3d.js';
 import { ConfigPanel } from './config.js';
 import { MapPanel, pathLength } from './map.js';
 import { MissionPanel, inputToSend } from './mission.js';
+import { VelocityPanel, velocityText } from './velocity.js';
 import { element } from './dom.js';
 
 /** @typedef {import('./protocol').GamepadReading} GamepadReading */
@@ -45,6 +47,7 @@ const mission = new MissionPanel(document, {
   stop,
   onDraft: (points) => map.setDraft(points),
 });
+const velocity = new VelocityPanel(document, { send: (message) => link.sendInput(message) });
 $('map-clear').addEventListener('click', () => map.clearTrack());
 
 // For the browser's developer tools and the tests: the link, the views and the newest status.
@@ -54,15 +57,15 @@ window.marsokhod = { link, view, map, status: null };
 // stick, button and key — otherwise its next 20 Hz message, the stick still pushed, would drive
 // on at once (a `stop` lasts only until the controller's next input).
 let stopLatched = false;
-const DEFLECTED = 0.1;  // the server's dead zone: less than this is no input
 
 /** @param {GamepadReading} reading */
 function isNeutral(reading) {
-  return reading.axes.every((v) => Math.abs(v) < DEFLECTED) && !reading.buttons.some(Boolean);
+  return reading.axes.every((v) => applyDeadZone(v) === 0) && !reading.buttons.some(Boolean);
 }
 
 function stop() {
   stopLatched = true;
+  velocity.cancel();
   const sent = link.stop();
   if (!sent) showError('STOP not sent: not connected (a controlling console that drops off stops the rover anyway)');
   return sent;
@@ -107,16 +110,21 @@ function showLinkState() {
   button('release-control').disabled = !link.inControl;
   config.setEnabled(link.inControl);
   mission.setEnabled(link.inControl);
+  velocity.setEnabled(link.inControl);
 }
 
 link.on('state', showLinkState);
-link.on('hello', ({ calibration: c }) => {
+link.on('hello', ({ calibration: c, velocityLimits }) => {
+  velocity.setLimits(velocityLimits);
   $('calibration').textContent = c && c.file
     ? `calibration: ${c.file} (${c.procedures.join(', ') || 'no procedures'})`
     : 'calibration: none (nominal configuration)';
 });
 link.on('control', showLinkState);
-link.on('stopped', ({ reason }) => showStopBanner(reason));
+link.on('stopped', ({ reason }) => {
+  velocity.cancel();
+  showStopBanner(reason);
+});
 link.on('error', ({ text }) => showError(text));
 link.on('pong', ({ rtt_ms }) => { $('link-state').title = `round trip ${rtt_ms.toFixed(0)} ms`; });
 link.on('status', ({ status }) => {
@@ -129,7 +137,7 @@ link.on('status', ({ status }) => {
   view.update(status);
   $('view-source').textContent = status.truth ? '(simulator ground truth)' : '(joint angles, rover placed level)';
   map.update(status);
-  mission.update(status.mission);
+  mission.update(status.mission, { sent: velocity.active ? velocity.sent : null, pose: status.pose });
   $('legend-truth').hidden = !status.truth?.odometry;
   const info = `track ${pathLength(map.tracks.estimated).toFixed(2)} m` +
     (map.tracks.truth.length > 1 ? `, true ${pathLength(map.tracks.truth).toFixed(2)} m` : '');
@@ -188,12 +196,21 @@ setInterval(() => {
     const reading = currentReading();
     const neutral = isNeutral(reading);
     if (stopLatched && neutral) stopLatched = false;
-    const what = inputToSend({ missionActive: mission.active(), neutral, stopLatched, tick });
-    if (what === 'gamepad') link.sendInput(gamepadMessage(stopLatched ? neutralReading() : reading));
-    else if (what === 'heartbeat') link.sendInput({ type: 'heartbeat' });
-    sending = stopLatched ? 'neutral: STOPPED, let go of every stick and key to drive again'
-      : what === 'gamepad' ? 'the reading at 20 Hz'
-        : 'heartbeat at 20 Hz: the mission drives (push a stick to take over)';
+    if (velocity.active && !stopLatched) {
+      const { message, source } = velocity.next(reading, mission.active());
+      link.sendInput(message);
+      sending = message.type === 'heartbeat'
+        ? 'heartbeat at 20 Hz: the mission drives (push the left stick to take over)'
+        : `velocity ${velocityText(message)} at 20 Hz (${source === 'form' ? 'the form\'s, until stop'
+          : source === 'stick' ? 'left stick' : 'neutral: the rover stops'}; right stick and buttons off)`;
+    } else {
+      const what = inputToSend({ missionActive: mission.active(), neutral, stopLatched, tick });
+      if (what === 'gamepad') link.sendInput(gamepadMessage(stopLatched ? neutralReading() : reading));
+      else if (what === 'heartbeat') link.sendInput({ type: 'heartbeat' });
+      sending = stopLatched ? 'neutral: STOPPED, let go of every stick and key to drive again'
+        : what === 'gamepad' ? 'the reading at 20 Hz'
+          : 'heartbeat at 20 Hz: the mission drives (push a stick to take over)';
+    }
   } else if (link.inControl) {
     sending = 'nothing: page hidden, the rover stops';
   }

@@ -11,6 +11,8 @@ import { parseNumber, parseWaypoints, formatWaypoints } from './map.js';
 
 /** @typedef {import('./protocol').MissionInput} MissionInput */
 /** @typedef {import('./protocol').MissionStatus} MissionStatus */
+/** @typedef {import('./protocol').Pose} Pose */
+/** @typedef {import('./velocity.js').VelocityCommand} VelocityCommand */
 /** @typedef {import('./map.js').Point} Point */
 
 export const MAX_TURN_DEG = 720;  // two turns
@@ -30,18 +32,21 @@ const DEG_PER_RAD = 180 / Math.PI;
 const finite = (v) => typeof v === 'number' && Number.isFinite(v);
 
 /**
+ * A number typed in a form field, or what is wrong with it.
  * @param {string} text
  * @param {string} what   for the message: "turn"
  * @param {string} unit   "°"
- * @param {number} limit  |value| ≤ limit, and not 0
+ * @param {number} limit  |value| ≤ limit
+ * @param {{ zero?: boolean, shownLimit?: string }} [options]  zero: 0 is allowed (else "does
+ *   nothing"); shownLimit: the limit as the message shows it (default: as it is)
  * @returns {{ value: number, error?: undefined } | { error: string, value?: undefined }}
  */
-function checkedNumber(text, what, unit, limit) {
+export function checkedNumber(text, what, unit, limit, { zero = false, shownLimit = String(limit) } = {}) {
   if (text.trim() === '') return { error: `${what}: empty; type a number in ${unit}` };
   const v = parseNumber(text);
   if (v === null) return { error: `${what}: "${text.trim()}" is not a number (${unit})` };
-  if (Math.abs(v) > limit) return { error: `${what}: ${v} is out of range; allowed −${limit}..${limit} ${unit}` };
-  if (v === 0) return { error: `${what}: 0 ${unit} does nothing` };
+  if (Math.abs(v) > limit) return { error: `${what}: ${v} is out of range; allowed −${shownLimit}..${shownLimit} ${unit}` };
+  if (v === 0 && !zero) return { error: `${what}: 0 ${unit} does nothing` };
   return { value: v };
 }
 
@@ -83,8 +88,9 @@ export function inputToSend({ missionActive, neutral, stopLatched, tick }) {
   return 'heartbeat';
 }
 
-// Whether a mission runs: the status says so, or one was sent within PENDING_MS and the status
-// does not yet show a newer mission.
+// Whether a turn, move or goto runs: the status says so, or one was sent within PENDING_MS and
+// the status does not yet show a newer mission. A `velocity` mission does not count: it is the
+// velocity stream itself (velocity.js), and a heartbeat would keep it going after its stream ended.
 export class MissionWatch {
   constructor() {
     /** @type {number | null} */
@@ -110,7 +116,7 @@ export class MissionWatch {
     if (this.sentAt !== null && (now - this.sentAt >= PENDING_MS || (mission && mission.id > this.sentAfterId))) {
       this.sentAt = null;  // shown, or never will be
     }
-    return mission?.state === 'running' || this.sentAt !== null;
+    return (mission?.state === 'running' && mission.kind !== 'velocity') || this.sentAt !== null;
   }
 
   cancel() {
@@ -119,13 +125,24 @@ export class MissionWatch {
 }
 
 /**
- * One line about the mission for people: "goto · running · leg 2 of 3 · 1.20 m to go".
+ * One line about the mission for people: "goto · running · leg 2 of 3 · 1.20 m to go". A running
+ * velocity mission has no progress: its values instead, the ones this console sends (`sent`, when
+ * it is the one sending) and the pose's speed and yaw rate (`pose`).
  * @param {MissionStatus | undefined} m
+ * @param {{ sent?: VelocityCommand | null, pose?: Pose }} [velocity]
  */
-export function missionSummary(m) {
+export function missionSummary(m, { sent = null, pose } = {}) {
   if (!m) return 'no mission support in this server (the status has no mission)';
   if (m.kind === 'none' || m.id === 0) return 'no mission yet';
   const parts = [`#${m.id} ${m.kind}`, m.state];
+  if (m.kind === 'velocity') {
+    if (m.state !== 'running') return parts.join(' · ');
+    if (sent) parts.push(`sent v ${sent.v_mps.toFixed(3)} m/s, ω ${sent.yaw_radps.toFixed(3)} rad/s`);
+    if (pose && finite(pose.speed_mps) && finite(pose.yaw_rate_radps)) {
+      parts.push(`estimated ${pose.speed_mps.toFixed(3)} m/s, ${pose.yaw_rate_radps.toFixed(3)} rad/s`);
+    }
+    return parts.join(' · ');
+  }
   const points = Array.isArray(m.waypoints) ? m.waypoints.length : 0;
   if (m.kind === 'goto' && points > 0) parts.push(`leg ${Math.min(m.leg + 1, points)} of ${points}`);
   if (finite(m.progress)) parts.push(`${Math.round(m.progress * 100)} %`);
@@ -221,10 +238,13 @@ export class MissionPanel {
     this.showDraft();
   }
 
-  /** @param {MissionStatus | undefined} mission */
-  update(mission) {
+  /**
+   * @param {MissionStatus | undefined} mission
+   * @param {{ sent?: VelocityCommand | null, pose?: Pose }} [velocity]  missionSummary's
+   */
+  update(mission, velocity) {
     this.mission = mission;
-    this.summary.textContent = missionSummary(mission);
+    this.summary.textContent = missionSummary(mission, velocity);
     this.summary.dataset.state = mission?.state ?? 'none';
     this.progress.value = mission && finite(mission.progress) ? Math.min(1, Math.max(0, mission.progress)) : 0;
     this.reason.textContent = mission?.reason ? `reason: ${mission.reason}` : '';

@@ -158,6 +158,14 @@ export interface HelloMessage {
   controller: number | null;
   read_only: boolean;
   calibration: CalibrationInfo;
+  /** The largest |v_mps| and |yaw_radps| of a `velocity` message; absent from older servers. */
+  velocity_limits?: VelocityLimits;
+}
+
+/** hello's velocity_limits: r·v1ᵈ [m/s] and r·v2ᵈ/(t/2) [rad/s]. */
+export interface VelocityLimits {
+  v_mps: number;
+  yaw_radps: number;
 }
 
 export interface ControlMessage {

@@ -295,6 +295,92 @@ test('a move of 0.3 m from the form runs, is reached, and draws a track of 0.3 m
   assert.deepEqual(page.problems, []);
 });
 
+// Velocity mode against the simulator. The wheels reach v/r = 0.8 rad/s through the ramp (4.14)
+// at μ = 2 rad/s² in 0.4 s, during which the rover covers at most 0.4 s · 0.1 m/s / 2 = 0.02 m
+// less than at full speed; straight on hard ground the wheels hardly slip. So the speed is
+// measured over ≥ 2.5 s of simulated time (mission_time_s, not the wall clock: a loaded machine
+// runs the simulator late, not fast) starting 0.5 s after the driver took the velocity, and must
+// be 0.1 m/s within 10 % — the true track's and the dead reckoning's alike.
+const VELOCITY_MPS = 0.1;
+const RAMP_S = 0.5;
+const MEASURE_S = 2.5;
+// Ramping down takes 0.4 s; the wait's bound only has to outlast a loaded machine.
+const REST_TIMEOUT_MS = 5000;
+const planar = (s) => Math.hypot(s.truth.velocity_mps[0], s.truth.velocity_mps[1]);
+
+test('velocity mode: 0.1 m/s from the form drives the rover at 0.1 m/s, the stick at the limit, stop and off bring it to rest', async (t) => {
+  const page = pages[1];  // in control, the pad centred
+  const toggle = '#velocity-form input[name=velocity_mode]';
+  await waitForStatus(page, 'the rover stands still', wheelsStill, STILL_DUTY, STOP_TIMEOUT_MS);
+  assert.equal(await page.isChecked(toggle), false, 'velocity mode is off by default');
+  assert.equal(await page.isDisabled('#velocity-send'), true, 'the form needs the mode on');
+  assert.equal(await page.textContent('#velocity-limits'), 'limits ±0.281 m/s, ±0.536 rad/s', 'the hello\'s limits');
+  await page.check(toggle);
+  // Neutral in velocity mode: zero velocity, which the driver runs as a velocity mission.
+  await waitForStatus(page, 'zero velocity started a velocity mission',
+    (s) => s.mission.kind === 'velocity' && s.mission.state === 'running' && s.targets.v1_radps === 0, null, 3000);
+  await spyOnSends(page);  // from here on, in velocity mode
+  assert.match(await page.textContent('#send-state'), /^velocity v 0\.000 m\/s, ω 0\.000 rad\/s at 20 Hz \(neutral/);
+
+  await page.fill('#velocity-form input[name=v_mps]', '0.5');
+  await page.click('#velocity-send');
+  assert.equal(await page.textContent('#velocity-result'), 'v: 0.5 is out of range; allowed −0.281..0.281 m/s');
+  await page.fill('#velocity-form input[name=v_mps]', String(VELOCITY_MPS));
+  await page.fill('#velocity-form input[name=yaw_radps]', '0');
+  await page.click('#velocity-send');
+  assert.equal(await page.textContent('#velocity-result'), 'sending v 0.100 m/s, ω 0.000 rad/s until stop');
+  const r = 0.125;  // the wheel radius: v1 = v/r
+  await waitForStatus(page, 'the driver took 0.1 m/s as v1 = 0.8 rad/s', (s, v1) => Math.abs(s.targets.v1_radps - v1) < 1e-9,
+    VELOCITY_MPS / r, 3000);
+  const taken = (await latestStatus(page)).mission_time_s;
+  await waitForStatus(page, 'the wheels came up to speed', (s, t0) => s.mission_time_s >= t0, taken + RAMP_S, 5000);
+  const a = await latestStatus(page);
+  await waitForStatus(page, `${MEASURE_S} s of driving went by`, (s, t0) => s.mission_time_s >= t0, a.mission_time_s + MEASURE_S, 15000);
+  const b = await latestStatus(page);
+  const dt = b.mission_time_s - a.mission_time_s;
+  const trueSpeed = Math.hypot(b.truth.position_m[0] - a.truth.position_m[0], b.truth.position_m[1] - a.truth.position_m[1]) / dt;
+  const estimatedSpeed = (b.pose.distance_m - a.pose.distance_m) / dt;
+  t.diagnostic(`over ${dt.toFixed(2)} s simulated: true ${trueSpeed.toFixed(4)} m/s, estimated ${estimatedSpeed.toFixed(4)} m/s`);
+  close(trueSpeed, VELOCITY_MPS, 0.1 * VELOCITY_MPS, 'the true speed');
+  close(estimatedSpeed, VELOCITY_MPS, 0.1 * VELOCITY_MPS, 'the dead reckoning\'s speed');
+  assert.ok(b.truth.position_m[0] - a.truth.position_m[0] > 0.8 * VELOCITY_MPS * dt, 'forward, not sideways');
+  assert.equal(b.mission.kind, 'velocity');
+  assert.equal(b.mission.state, 'running');
+  assert.equal(b.mission.id, a.mission.id, 'one velocity mission all along (the form re-sends, no timeout)');
+  assert.equal(b.operator_timeout, false);
+  assert.match(await page.textContent('#mission-summary'),
+    new RegExp(`^#${b.mission.id} velocity · running · sent v 0\\.100 m/s, ω 0\\.000 rad/s · estimated 0\\.\\d{3} m/s`));
+  assert.match(await page.textContent('#send-state'), /^velocity v 0\.100 m\/s, ω 0\.000 rad\/s at 20 Hz \(the form's, until stop/);
+  const types = new Set(await sentTypes(page));
+  assert.ok(types.has('velocity') && !types.has('gamepad'), `velocity instead of the reading: ${[...types]}`);
+  await screenshot(page, 'console-velocity-form.png');
+
+  await page.click('#velocity-stop');
+  assert.equal(await page.textContent('#velocity-result'), 'sent zero velocity');
+  await waitForStatus(page, 'the rover came to rest after stop', (s) => wheelsStill(s, STILL_DUTY) && planar(s) < 0.01,
+    null, REST_TIMEOUT_MS);
+  assert.equal((await latestStatus(page)).mission.kind, 'velocity', 'zero velocity goes on while the mode is on');
+
+  // The stick: full up is the largest speed, r·v1ᵈ, i.e. v1 = v1ᵈ = 2.25 rad/s.
+  await setPad(page, { axes: STICK_UP });
+  await waitForStatus(page, 'the stick asks for the largest speed', (s) => Math.abs(s.targets.v1_radps - 2.25) < 1e-9, null, 3000);
+  await setPad(page, { axes: CENTERED });
+  await waitForStatus(page, 'the rover came to rest with the stick centred', (s) => wheelsStill(s, STILL_DUTY) && planar(s) < 0.01,
+    null, REST_TIMEOUT_MS);
+
+  // The form's velocity again, then the mode off: the gamepad reading again, the mission ends.
+  await page.click('#velocity-send');
+  await waitForStatus(page, 'the form\'s velocity again', (s, v1) => Math.abs(s.targets.v1_radps - v1) < 1e-9, VELOCITY_MPS / r, 3000);
+  await page.uncheck(toggle);
+  await waitForStatus(page, 'the velocity mission ended with the mode off',
+    (s) => s.mission.kind === 'velocity' && s.mission.state === 'aborted', null, 3000);
+  await waitForStatus(page, 'the rover came to rest with the mode off', (s) => wheelsStill(s, STILL_DUTY) && planar(s) < 0.01,
+    null, REST_TIMEOUT_MS);
+  assert.match(await page.textContent('#send-state'), /the reading at 20 Hz/);
+  assert.equal(await page.isDisabled('#velocity-send'), true);
+  assert.deepEqual(page.problems, []);
+});
+
 test('the keyboard drives the rover (W), and the configuration reaches the server', async () => {
   const page = pages[1];  // the gamepad's page holds control; its pad is centered
   const form = page.locator('#config-form');

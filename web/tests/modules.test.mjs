@@ -1,13 +1,15 @@
 // The console's pure parts, in node without a browser: the geometry of the 3-D view (values worked
 // out by hand from a = 0.145 m, b = 0.413 m), the keyboard's synthetic gamepad, the gamepad
 // reading, the `configure` message, the WebSocket address, the status' formatting, the map's
-// transform, fit, grid and tracks, and the mission form's messages and heartbeat.
+// transform, fit, grid and tracks, the mission form's messages and heartbeat, and velocity mode.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { axleDistance, strutElevation, jointPosition, roverPose } from '../src/view3d.js';
 import { keyboardReading } from '../src/keyboard.js';
-import { readPad, firstStandardPad, mergeReadings, gamepadMessage, neutralReading } from '../src/gamepad.js';
+import {
+  readPad, firstStandardPad, mergeReadings, gamepadMessage, neutralReading, applyDeadZone, DEAD_ZONE,
+} from '../src/gamepad.js';
 import { configureMessage, inForceLabels } from '../src/config.js';
 import { websocketUrl, addressWithoutToken } from '../src/link.js';
 import { missionTime, lcdDisplay } from '../src/status.js';
@@ -16,6 +18,7 @@ import {
   pathLength, TrackLog, missionWaypoints, missionTarget, formatMetres,
 } from '../src/map.js';
 import { missionMessage, inputToSend, MissionWatch, missionSummary, PENDING_MS } from '../src/mission.js';
+import { velocityLimits, stickVelocity, formVelocity, velocityStep, velocityText } from '../src/velocity.js';
 
 const A = 0.145, B = 0.413;
 const close = (actual, expected, tolerance, what) =>
@@ -347,4 +350,89 @@ test('the mission\'s status in one line', () => {
     id: 6, kind: 'goto', state: 'reached', progress: 1, leg: 1, waypoints: [[1, 0], [1, 1]],
     remaining_m: null, remaining_rad: null, corrections: 1,
   }), '#6 goto · reached · leg 2 of 2 · 100 % · 1 correction');
+});
+
+// The default configuration's limits as the server's hello tells them (docs/operator-protocol.md):
+// r·v1ᵈ = 0.125 m · 2.25 rad/s, r·v2ᵈ/(t/2) = 0.125 m · 1.5 rad/s / 0.35 m.
+const LIMITS = { v_mps: 0.125 * 2.25, yaw_radps: 0.125 * 1.5 / 0.35 };
+const pad = (axes) => ({ axes, buttons: new Array(17).fill(false) });
+
+test('the dead zone is the server\'s: 0 inside 0.1, rescaled to reach ±1, continuous at its edge', () => {
+  assert.equal(DEAD_ZONE, 0.1);
+  assert.equal(applyDeadZone(0), 0);
+  assert.equal(applyDeadZone(0.09), 0);
+  assert.equal(applyDeadZone(-0.1), 0, 'its edge reads 0 from both sides');
+  close(applyDeadZone(0.1 + 1e-9), 0, 1e-8, 'just outside');
+  close(applyDeadZone(0.55), 0.5, 1e-12, '(0.55 − 0.1)/0.9');
+  assert.equal(applyDeadZone(1), 1);
+  assert.equal(applyDeadZone(-1), -1);
+  assert.equal(applyDeadZone(Number.NaN), 0, 'a broken axis is no input');
+});
+
+test('velocity mode: the left stick × the server\'s limits, with the gamepad\'s dead zone and clipping', () => {
+  assert.deepEqual(velocityLimits({ v_mps: 0.28125, yaw_radps: 0.5 }), { v_mps: 0.28125, yaw_radps: 0.5 });
+  for (const bad of [undefined, null, 3, {}, { v_mps: 0.2 }, { v_mps: 0, yaw_radps: 0.5 }, { v_mps: -1, yaw_radps: 1 },
+    { v_mps: Infinity, yaw_radps: 1 }, { v_mps: '0.2', yaw_radps: 1 }]) {
+    assert.equal(velocityLimits(bad), null, `no limits from ${JSON.stringify(bad)}`);
+  }
+  assert.deepEqual(stickVelocity(pad([0, -1, 0, 0]), LIMITS), { v_mps: LIMITS.v_mps, yaw_radps: 0 }, 'full forward = the largest speed');
+  assert.deepEqual(stickVelocity(pad([0, 1, 0, 0]), LIMITS), { v_mps: -LIMITS.v_mps, yaw_radps: 0 }, 'full back');
+  assert.deepEqual(stickVelocity(pad([-1, 0, 0, 0]), LIMITS), { v_mps: 0, yaw_radps: LIMITS.yaw_radps },
+    'stick left = counter-clockwise = + yaw (docs/gamepad.md: right is clockwise)');
+  assert.deepEqual(stickVelocity(pad([0.09, -0.09, 1, -1]), LIMITS), { v_mps: 0, yaw_radps: 0 },
+    'inside the dead zone: zero; the right stick does nothing');
+  const half = stickVelocity(pad([0.55, -0.55, 0, 0]), LIMITS);
+  close(half.v_mps, 0.5 * LIMITS.v_mps, 1e-12, 'half way past the dead zone: half speed');
+  close(half.yaw_radps, -0.5 * LIMITS.yaw_radps, 1e-12, 'clockwise');
+  assert.deepEqual(stickVelocity(pad([3, -7, 0, 0]), LIMITS), { v_mps: LIMITS.v_mps, yaw_radps: -LIMITS.yaw_radps },
+    'clipped to the limits, which the server would otherwise reject');
+  assert.ok(!Object.is(stickVelocity(pad([0, 0, 0, 0]), LIMITS).v_mps, -0), 'no −0 in the message');
+  // The keyboard's W is the stick full up, Shift+W half of it (keyboard.js).
+  assert.deepEqual(stickVelocity(keyboardReading(['KeyW', 'KeyA'], false), LIMITS),
+    { v_mps: LIMITS.v_mps, yaw_radps: LIMITS.yaw_radps });
+  close(stickVelocity(keyboardReading(['KeyW'], true), LIMITS).v_mps, (0.5 - 0.1) / 0.9 * LIMITS.v_mps, 1e-12, 'Shift+W');
+});
+
+test('the velocity form refuses bad input with a message and keeps 0 for one of v, ω', () => {
+  assert.deepEqual(formVelocity('0.1', '0', LIMITS), { command: { v_mps: 0.1, yaw_radps: 0 } });
+  assert.deepEqual(formVelocity(' -0.2 ', '0.3', LIMITS), { command: { v_mps: -0.2, yaw_radps: 0.3 } });
+  assert.deepEqual(formVelocity('0', '-0.5', LIMITS), { command: { v_mps: 0, yaw_radps: -0.5 } }, 'on the spot');
+  assert.equal(formVelocity('0.3', '0', LIMITS).error, 'v: 0.3 is out of range; allowed −0.281..0.281 m/s');
+  assert.equal(formVelocity('0.1', '0.6', LIMITS).error, 'ω: 0.6 is out of range; allowed −0.535..0.535 rad/s');
+  assert.equal(formVelocity('', '0', LIMITS).error, 'v: empty; type a number in m/s');
+  assert.equal(formVelocity('fast', '0', LIMITS).error, 'v: "fast" is not a number (m/s)');
+  assert.equal(formVelocity('0.1', 'NaN', LIMITS).error, 'ω: "NaN" is not a number (rad/s)');
+  assert.equal(formVelocity('0', '0', LIMITS).error, 'v and ω are both 0: that is "stop"');
+  assert.match(formVelocity('0.1', '0', null).error, /does not tell its velocity limits/);
+  assert.equal(velocityText({ v_mps: 0.1, yaw_radps: -0.2 }), 'v 0.100 m/s, ω -0.200 rad/s');
+});
+
+test('velocity mode sends the stick, else the form\'s velocity until a stick takes over, else zero', () => {
+  const centred = pad([0, 0, 0, 0]);
+  const form = { v_mps: 0.1, yaw_radps: 0 };
+  const zero = { type: 'velocity', v_mps: 0, yaw_radps: 0 };
+  assert.deepEqual(velocityStep({ reading: centred, limits: LIMITS, held: null, drivingMission: false }),
+    { message: zero, held: null, source: 'neutral' }, 'neutral: zero velocity, the driver stops the rover');
+  assert.deepEqual(velocityStep({ reading: centred, limits: LIMITS, held: form, drivingMission: false }),
+    { message: { type: 'velocity', ...form }, held: form, source: 'form' }, 'the form\'s velocity, kept');
+  assert.deepEqual(velocityStep({ reading: pad([0, 0.5, 0, 0]), limits: LIMITS, held: form, drivingMission: false }),
+    { message: { type: 'velocity', ...stickVelocity(pad([0, 0.5, 0, 0]), LIMITS) }, held: null, source: 'stick' },
+    'a pushed stick takes over and ends the form\'s velocity');
+  assert.deepEqual(velocityStep({ reading: centred, limits: LIMITS, held: null, drivingMission: true }),
+    { message: { type: 'heartbeat' }, held: null, source: 'mission' }, 'a turn/move/goto is kept alive, not replaced');
+  assert.equal(velocityStep({ reading: centred, limits: LIMITS, held: form, drivingMission: true }).source, 'form',
+    'a velocity sent from the form replaces the mission');
+});
+
+test('a running velocity mission is not one the heartbeat keeps alive, and its line shows its values', () => {
+  const watch = new MissionWatch();
+  const running = { id: 7, kind: 'velocity', state: 'running', reason: '', progress: 0, leg: 0, waypoints: [],
+    target_heading_rad: null, remaining_m: null, remaining_rad: null };
+  assert.equal(watch.active(running, 0), false, 'else a neutral stick would send heartbeats that keep it going');
+  assert.equal(watch.active({ ...running, kind: 'move' }, 0), true);
+  assert.equal(missionSummary(running, { sent: { v_mps: 0.1, yaw_radps: 0 }, pose: { speed_mps: 0.0981, yaw_rate_radps: -0.0004 } }),
+    '#7 velocity · running · sent v 0.100 m/s, ω 0.000 rad/s · estimated 0.098 m/s, -0.000 rad/s');
+  assert.equal(missionSummary(running), '#7 velocity · running', 'another console\'s velocity: no values sent from here');
+  assert.equal(missionSummary({ ...running, state: 'aborted', reason: 'the operator\'s input is no longer a velocity' }),
+    '#7 velocity · aborted');
 });
