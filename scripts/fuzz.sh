@@ -29,6 +29,7 @@ fi
 
 CC=clang CXX=clang++ cmake -S "${repo}" -B "${build}" -G Ninja \
   -DMARSOKHOD_FUZZ=ON -DMARSOKHOD_BENCHMARKS=OFF \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined"
 cmake --build "${build}" --target "${target}" "${link_target}" "${socketcand_target}" \
   "${candump_target}" "${scenario_target}" -j "${FUZZ_JOBS:-$(nproc)}"

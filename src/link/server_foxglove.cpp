@@ -138,8 +138,9 @@ void ServerCore::on_foxglove_text(ClientId id, std::string_view text) {
 void ServerCore::subscribe(FoxgloveClient& client, const foxglove::Subscribe& op) {
   std::string refused;
   for (const auto& [subscription, channel_id] : op.subscriptions) {
+    const std::uint32_t wanted = channel_id;  // clang 14 cannot capture a structured binding
     const bool known = std::any_of(channels_.begin(), channels_.end(), [&](const auto& entry) {
-      return entry.second.id == channel_id;
+      return entry.second.id == wanted;
     });
     if (!known) {
       refused += (refused.empty() ? "" : "; ") + std::string("channel ") +
