@@ -110,16 +110,16 @@ std::array<BacklashTracker, kMotorCount> make_trackers(const MotorVector& backla
                                                        const MotorVector& initial_position_rad) {
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     checks::require_non_negative(backlash_rad[i], "RoverBacklashTracker",
-                                 checks::argument_name("backlash_rad", i));
+                                 checks::Element{"backlash_rad", i});
     checks::require_finite(initial_position_rad[i], "RoverBacklashTracker",
-                           checks::argument_name("initial_position_rad", i));
+                           checks::Element{"initial_position_rad", i});
   }
   return make_trackers(backlash_rad, initial_position_rad, std::make_index_sequence<kMotorCount>{});
 }
 
 void check_all_finite(const MotorVector& values, const char* function, const char* argument) {
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    checks::require_finite(values[i], function, checks::argument_name(argument, i));
+    checks::require_finite(values[i], function, checks::Element{argument, i});
   }
 }
 

@@ -23,7 +23,7 @@ std::string describe_pairs(const std::vector<ResponseParams>& responses) {
 
 void check_all_finite(const MotorVector& values, const char* function, const char* argument) {
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    checks::require_finite(values[i], function, checks::argument_name(argument, i));
+    checks::require_finite(values[i], function, checks::Element{argument, i});
   }
 }
 
@@ -61,7 +61,7 @@ NoLoadEstimator::NoLoadEstimator(const ResponseParams& response,
         " is empty; give at least δ⁰ (Procedure 4.8)");
   }
   for (std::size_t j = 0; j < delta_.size(); ++j) {
-    checks::require_finite(delta_[j], "NoLoadEstimator", checks::argument_name("delta", j));
+    checks::require_finite(delta_[j], "NoLoadEstimator", checks::Element{"delta", j});
   }
   check_all_finite(initial_w_hat_radps, "NoLoadEstimator", "initial_w_hat_radps");
   history_.assign(delta_.size() - 1, initial_w_hat_radps);
@@ -86,7 +86,7 @@ MotorVector NoLoadEstimator::no_load_velocity_radps(const MotorVector& w_hat_rad
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     nu[i] += delta_[0] * w_hat_radps[i];
     checks::require_finite_result(nu[i], "NoLoadEstimator::no_load_velocity_radps",
-                                  checks::argument_name("nu", i));
+                                  checks::Element{"nu", i});
   }
   return nu;
 }
@@ -99,7 +99,7 @@ MotorVector NoLoadEstimator::no_load_velocity_radps() const {
   const MotorVector nu = history_sum_radps();
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     checks::require_finite_result(nu[i], "NoLoadEstimator::no_load_velocity_radps",
-                                  checks::argument_name("nu", i));
+                                  checks::Element{"nu", i});
   }
   return nu;
 }
@@ -126,9 +126,9 @@ MotorVector load(const MotorVector& measured_velocity_radps,
   MotorVector result{};
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     checks::require_finite(measured_velocity_radps[i], "load",
-                           checks::argument_name("measured_velocity_radps", i));
+                           checks::Element{"measured_velocity_radps", i});
     checks::require_finite(no_load_velocity_radps[i], "load",
-                           checks::argument_name("no_load_velocity_radps", i));
+                           checks::Element{"no_load_velocity_radps", i});
   }
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     result[i] = load(measured_velocity_radps[i], no_load_velocity_radps[i]);

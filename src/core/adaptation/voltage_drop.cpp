@@ -22,9 +22,9 @@ double voltage_drop_v(std::span<const double> duties, std::span<const double> lo
   double duty_sum = 0.0;
   double load_square_sum_rad2_per_s2 = 0.0;
   for (std::size_t i = 0; i < duties.size(); ++i) {
-    checks::require_duty(duties[i], "voltage_drop_v", checks::argument_name("duties", i));
+    checks::require_duty(duties[i], "voltage_drop_v", checks::Element{"duties", i});
     checks::require_finite(loads_radps[i], "voltage_drop_v",
-                           checks::argument_name("loads_radps", i));
+                           checks::Element{"loads_radps", i});
     duty_sum += std::abs(duties[i]);
     load_square_sum_rad2_per_s2 += loads_radps[i] * loads_radps[i];
   }

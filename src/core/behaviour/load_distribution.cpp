@@ -15,7 +15,7 @@ void require_inputs(const MotorVector& loads_radps, double drive_speed_radps,
                     const LoadDistributionParams& params, const char* function) {
   for (std::size_t i = 0; i < kWheelCount; ++i) {
     checks::require_finite_estimate(loads_radps[i], function,
-                                    checks::argument_name("loads_radps", i));
+                                    checks::Element{"loads_radps", i});
   }
   checks::require_finite_estimate(drive_speed_radps, function, "drive_speed_radps");
   checks::require_non_negative(params.gain_per_radps, function, "params.gain_per_radps");

@@ -43,9 +43,9 @@ double next_duty_bound(const MotorVector& duties, const MotorVector& loads_radps
   double duty_sum = 0.0;
   double load_square_sum_rad2_per_s2 = 0.0;
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    checks::require_within(duties[i], -1.0, 1.0, kFunction, checks::argument_name("duties", i));
+    checks::require_within(duties[i], -1.0, 1.0, kFunction, checks::Element{"duties", i});
     checks::require_finite_estimate(loads_radps[i], kFunction,
-                                    checks::argument_name("loads_radps", i));
+                                    checks::Element{"loads_radps", i});
     largest_duty = std::max(largest_duty, std::abs(duties[i]));
     duty_sum += std::abs(duties[i]);
     load_square_sum_rad2_per_s2 += loads_radps[i] * loads_radps[i];

@@ -15,7 +15,7 @@ double norm(const Vector3& vector) { return std::hypot(vector[0], vector[1], vec
 
 void require_finite_vector(const Vector3& vector, const char* function, const char* argument) {
   for (std::size_t i = 0; i < vector.size(); ++i) {
-    checks::require_finite_estimate(vector[i], function, checks::argument_name(argument, i));
+    checks::require_finite_estimate(vector[i], function, checks::Element{argument, i});
   }
 }
 

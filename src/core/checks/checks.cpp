@@ -28,6 +28,12 @@ std::string argument_name(std::string_view argument, std::size_t index) {
   return std::string(argument) + "[" + std::to_string(index) + "]";
 }
 
+std::string argument_name(const Element& element) {
+  std::string name = argument_name(element.argument, element.index);
+  if (!element.motor.empty()) name += " (" + std::string(element.motor) + ")";
+  return name;
+}
+
 void require_finite(double value, std::string_view function, std::string_view argument) {
   if (!std::isfinite(value)) {
     fail(function, argument, value, "pass a finite value");

@@ -9,6 +9,7 @@
 //     "invalid <name> = <value>: it must be <requirement>; <remedy>"
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -20,6 +21,17 @@ std::string format_number(double value);
 
 // "argument" or "argument[index]".
 std::string argument_name(std::string_view argument, std::size_t index);
+
+// An element of a vector argument, "argument[index]" or with a motor's name
+// "argument[index] (CL)", named only when its check fails. The element checks below run for
+// every motor in every control cycle; building each name first cost the cycle more than its
+// arithmetic (issue #19, BENCHMARKS.md).
+struct Element {
+  std::string_view argument;
+  std::size_t index = 0;
+  std::string_view motor = {};  // a motor's name (kMotorNames), or empty
+};
+std::string argument_name(const Element& element);
 
 // Throws unless value is finite.
 void require_finite(double value, std::string_view function, std::string_view argument);
@@ -44,6 +56,38 @@ void require_duty(double value, std::string_view function, std::string_view argu
 // Throws unless a computed value is finite: finite inputs so large that the arithmetic overflows.
 void require_finite_result(double value, std::string_view function, std::string_view result);
 
+// The same checks of a vector's element: the same messages, the name built only on failure.
+inline void require_finite(double value, std::string_view function, const Element& argument) {
+  if (!std::isfinite(value)) [[unlikely]] require_finite(value, function, argument_name(argument));
+}
+inline void require_finite_estimate(double value, std::string_view function,
+                                    const Element& argument) {
+  if (!std::isfinite(value)) [[unlikely]] {
+    require_finite_estimate(value, function, argument_name(argument));
+  }
+}
+inline void require_within(double value, double lowest, double highest, std::string_view function,
+                           const Element& argument) {
+  if (!std::isfinite(value) || value < lowest || value > highest) [[unlikely]] {
+    require_within(value, lowest, highest, function, argument_name(argument));
+  }
+}
+inline void require_duty(double value, std::string_view function, const Element& argument) {
+  if (!std::isfinite(value) || std::abs(value) > 1.0) [[unlikely]] {
+    require_duty(value, function, argument_name(argument));
+  }
+}
+inline void require_finite_result(double value, std::string_view function,
+                                  const Element& result) {
+  if (!std::isfinite(value)) [[unlikely]] require_finite_result(value, function, argument_name(result));
+}
+inline void require_non_negative(double value, std::string_view function,
+                                 const Element& argument) {
+  if (!std::isfinite(value) || value < 0.0) [[unlikely]] {
+    require_non_negative(value, function, argument_name(argument));
+  }
+}
+
 // The inputs of a control law: every number that enters a law is checked, so that no NaN or
 // infinity can leave one.
 namespace law {
@@ -56,6 +100,11 @@ void require_positive(double value, std::string_view law, std::string_view argum
 
 // Throws unless value is finite and |value| ≤ bound.
 void require_bounded(double value, double bound, std::string_view law, std::string_view argument);
+
+// require_finite of a vector's element, named only on failure.
+inline void require_finite(double value, std::string_view law, const Element& argument) {
+  if (!std::isfinite(value)) [[unlikely]] require_finite(value, law, argument_name(argument));
+}
 
 }  // namespace law
 

@@ -33,7 +33,7 @@ std::optional<std::string> TipOverMonitor::update(const std::array<double, 3>& a
   constexpr std::string_view kLaw = "TipOverMonitor::update";
   checks::law::require_positive(period_s, kLaw, "period_s");
   for (std::size_t i = 0; i < 3; ++i) {
-    checks::law::require_finite(a[i], kLaw, checks::argument_name("accel_mps2", i));
+    checks::law::require_finite(a[i], kLaw, checks::Element{"accel_mps2", i});
   }
   if (std::hypot(a[0], a[1], a[2]) >= kMinReadingMps2) {
     const double alpha = std::min(1.0, period_s / limits_.time_constant_s);
@@ -75,9 +75,9 @@ std::optional<std::string> StuckMonitor::update(const StuckInput& in) {
   double commanded = 0.0;
   double turned = 0.0;
   for (std::size_t i = 0; i < in.no_load_radps.size(); ++i) {
-    checks::law::require_finite(in.no_load_radps[i], kLaw, checks::argument_name("no_load_radps", i));
+    checks::law::require_finite(in.no_load_radps[i], kLaw, checks::Element{"no_load_radps", i});
     checks::law::require_finite(in.velocity_radps[i], kLaw,
-                                checks::argument_name("velocity_radps", i));
+                                checks::Element{"velocity_radps", i});
     commanded += std::abs(in.no_load_radps[i]);
     turned += std::abs(in.velocity_radps[i]);
   }

@@ -14,10 +14,8 @@
 namespace marsokhod::mobility {
 namespace {
 
-std::string motor_argument(const char* vector, std::size_t motor) {
-  std::ostringstream name;
-  name << vector << "[" << motor << "] (" << kMotorNames[motor] << ")";
-  return name.str();
+checks::Element motor_argument(std::string_view vector, std::size_t motor) {
+  return {vector, motor, kMotorNames[motor]};
 }
 
 void check_inputs(const MotorVector& driving, const MotorVector& walking,
@@ -29,7 +27,8 @@ void check_inputs(const MotorVector& driving, const MotorVector& walking,
     checks::law::require_finite(bounds[i], kWhere, motor_argument("bounds_radps", i));
     if (bounds[i] < 0.0) {
       std::ostringstream message;
-      message << kWhere << ": " << motor_argument("bounds_radps", i) << " must be ≥ 0, got "
+      message << kWhere << ": " << checks::argument_name(motor_argument("bounds_radps", i))
+              << " must be ≥ 0, got "
               << bounds[i] << "; (5.5) bounds |ŵ_i| by ζ_i·W(D)·U/Ū";
       throw std::invalid_argument(message.str());
     }
