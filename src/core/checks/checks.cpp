@@ -34,59 +34,11 @@ std::string argument_name(const Element& element) {
   return name;
 }
 
-void require_finite(double value, std::string_view function, std::string_view argument) {
-  if (!std::isfinite(value)) {
-    fail(function, argument, value, "pass a finite value");
-  }
-}
-
-void require_finite_estimate(double value, std::string_view function, std::string_view argument) {
-  if (!std::isfinite(value)) {
-    fail(function, argument, value,
-         "pass a finite value (a NaN or infinity means the estimate feeding this behaviour is "
-         "broken upstream)");
-  }
-}
-
-void require_positive(double value, std::string_view function, std::string_view argument) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    fail(function, argument, value, "it must be finite and greater than 0");
-  }
-}
-
-void require_non_negative(double value, std::string_view function, std::string_view argument) {
-  if (!std::isfinite(value) || value < 0.0) {
-    fail(function, argument, value, "it must be finite and not negative");
-  }
-}
-
-void require_within(double value, double lowest, double highest, std::string_view function,
-                    std::string_view argument) {
-  if (!std::isfinite(value) || value < lowest || value > highest) {
-    fail(function, argument, value,
-         "it must be finite and within [" + format_number(lowest) + ", " + format_number(highest) +
-             "]");
-  }
-}
-
-void require_duty(double value, std::string_view function, std::string_view argument) {
-  if (!std::isfinite(value) || std::abs(value) > 1.0) {
-    fail(function, argument, value, "a duty cycle must be finite and within [-1, 1]");
-  }
-}
-
-void require_finite_result(double value, std::string_view function, std::string_view result) {
-  if (!std::isfinite(value)) {
-    fail(function, result, value,
-         "the arithmetic overflowed: the inputs are far outside any physical range");
-  }
-}
-
-namespace law {
+namespace detail {
 namespace {
 
-[[noreturn]] void reject(double value, std::string_view law, std::string_view argument,
-                         std::string_view requirement, std::string_view hint) {
+[[noreturn]] void reject_law(double value, std::string_view law, std::string_view argument,
+                             std::string_view requirement, std::string_view hint) {
   std::ostringstream message;
   message << law << ": " << argument << " must be " << requirement << ", got " << value << "; "
           << hint;
@@ -95,32 +47,60 @@ namespace {
 
 }  // namespace
 
-void require_finite(double value, std::string_view law, std::string_view argument) {
-  if (!std::isfinite(value)) {
-    reject(value, law, argument, "a finite number",
-           "a NaN or infinity here means the state estimate or the command feeding this law is "
-           "broken; fix it upstream instead of passing it on");
-  }
+void fail_finite(double value, std::string_view function, std::string_view argument) {
+  fail(function, argument, value, "pass a finite value");
 }
 
-void require_positive(double value, std::string_view law, std::string_view argument) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    reject(value, law, argument, "a finite number > 0", "check the configuration");
-  }
+void fail_finite_estimate(double value, std::string_view function, std::string_view argument) {
+  fail(function, argument, value,
+       "pass a finite value (a NaN or infinity means the estimate feeding this behaviour is "
+       "broken upstream)");
 }
 
-void require_bounded(double value, double bound, std::string_view law,
-                     std::string_view argument) {
-  require_finite(value, law, argument);
-  if (std::abs(value) > bound) {
-    std::ostringstream requirement;
-    requirement << "within [-" << bound << ", " << bound << "]";
-    reject(value, law, argument, requirement.str(),
-           "Lemma 4.15 requires |c| ≤ C, so the control law that produced it is wrong");
-  }
+void fail_positive(double value, std::string_view function, std::string_view argument) {
+  fail(function, argument, value, "it must be finite and greater than 0");
 }
 
-}  // namespace law
+void fail_non_negative(double value, std::string_view function, std::string_view argument) {
+  fail(function, argument, value, "it must be finite and not negative");
+}
+
+void fail_within(double value, double lowest, double highest, std::string_view function,
+                 std::string_view argument) {
+  fail(function, argument, value,
+       "it must be finite and within [" + format_number(lowest) + ", " + format_number(highest) +
+           "]");
+}
+
+void fail_duty(double value, std::string_view function, std::string_view argument) {
+  fail(function, argument, value, "a duty cycle must be finite and within [-1, 1]");
+}
+
+void fail_finite_result(double value, std::string_view function, std::string_view result) {
+  fail(function, result, value,
+       "the arithmetic overflowed: the inputs are far outside any physical range");
+}
+
+void fail_law_finite(double value, std::string_view law, std::string_view argument) {
+  reject_law(value, law, argument, "a finite number",
+             "a NaN or infinity here means the state estimate or the command feeding this law is "
+             "broken; fix it upstream instead of passing it on");
+}
+
+void fail_law_positive(double value, std::string_view law, std::string_view argument) {
+  reject_law(value, law, argument, "a finite number > 0", "check the configuration");
+}
+
+void fail_law_bounded(double value, double bound, std::string_view law,
+                      std::string_view argument) {
+  if (!std::isfinite(value)) fail_law_finite(value, law, argument);
+  std::ostringstream requirement;
+  requirement << "within [-" << bound << ", " << bound << "]";
+  reject_law(value, law, argument, requirement.str(),
+             "Lemma 4.15 requires |c| ≤ C, so the control law that produced it is wrong");
+}
+
+}  // namespace detail
 
 namespace setting {
 namespace {

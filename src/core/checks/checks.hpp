@@ -33,58 +33,107 @@ struct Element {
 };
 std::string argument_name(const Element& element);
 
+// The failures, out of line: the checks below are inline so that a passing check costs a
+// comparison, and a name given as a `const char*` is measured only when the check fails.
+namespace detail {
+[[noreturn]] void fail_finite(double value, std::string_view function, std::string_view argument);
+[[noreturn]] void fail_finite_estimate(double value, std::string_view function,
+                                       std::string_view argument);
+[[noreturn]] void fail_positive(double value, std::string_view function, std::string_view argument);
+[[noreturn]] void fail_non_negative(double value, std::string_view function,
+                                    std::string_view argument);
+[[noreturn]] void fail_within(double value, double lowest, double highest,
+                              std::string_view function, std::string_view argument);
+[[noreturn]] void fail_duty(double value, std::string_view function, std::string_view argument);
+[[noreturn]] void fail_finite_result(double value, std::string_view function,
+                                     std::string_view result);
+[[noreturn]] void fail_law_finite(double value, std::string_view law, std::string_view argument);
+[[noreturn]] void fail_law_positive(double value, std::string_view law, std::string_view argument);
+[[noreturn]] void fail_law_bounded(double value, double bound, std::string_view law,
+                                   std::string_view argument);
+}  // namespace detail
+
 // Throws unless value is finite.
-void require_finite(double value, std::string_view function, std::string_view argument);
+inline void require_finite(double value, std::string_view function, std::string_view argument) {
+  if (!std::isfinite(value)) [[unlikely]] detail::fail_finite(value, function, argument);
+}
 
 // Throws unless value is finite, for the behaviours' inputs: estimates, whose NaN or infinity
 // means the estimate feeding the behaviour is broken upstream.
-void require_finite_estimate(double value, std::string_view function, std::string_view argument);
+inline void require_finite_estimate(double value, std::string_view function,
+                                    std::string_view argument) {
+  if (!std::isfinite(value)) [[unlikely]] detail::fail_finite_estimate(value, function, argument);
+}
 
 // Throws unless value is finite and > 0.
-void require_positive(double value, std::string_view function, std::string_view argument);
+inline void require_positive(double value, std::string_view function, std::string_view argument) {
+  if (!std::isfinite(value) || value <= 0.0) [[unlikely]] {
+    detail::fail_positive(value, function, argument);
+  }
+}
 
 // Throws unless value is finite and ≥ 0.
-void require_non_negative(double value, std::string_view function, std::string_view argument);
+inline void require_non_negative(double value, std::string_view function,
+                                 std::string_view argument) {
+  if (!std::isfinite(value) || value < 0.0) [[unlikely]] {
+    detail::fail_non_negative(value, function, argument);
+  }
+}
 
 // Throws unless value is finite and within [lowest, highest].
-void require_within(double value, double lowest, double highest, std::string_view function,
-                    std::string_view argument);
+inline void require_within(double value, double lowest, double highest, std::string_view function,
+                           std::string_view argument) {
+  if (!std::isfinite(value) || value < lowest || value > highest) [[unlikely]] {
+    detail::fail_within(value, lowest, highest, function, argument);
+  }
+}
 
 // Throws unless value is a duty cycle: finite and in [−1, 1].
-void require_duty(double value, std::string_view function, std::string_view argument);
+inline void require_duty(double value, std::string_view function, std::string_view argument) {
+  if (!std::isfinite(value) || std::abs(value) > 1.0) [[unlikely]] {
+    detail::fail_duty(value, function, argument);
+  }
+}
 
 // Throws unless a computed value is finite: finite inputs so large that the arithmetic overflows.
-void require_finite_result(double value, std::string_view function, std::string_view result);
+inline void require_finite_result(double value, std::string_view function,
+                                  std::string_view result) {
+  if (!std::isfinite(value)) [[unlikely]] detail::fail_finite_result(value, function, result);
+}
 
 // The same checks of a vector's element: the same messages, the name built only on failure.
 inline void require_finite(double value, std::string_view function, const Element& argument) {
-  if (!std::isfinite(value)) [[unlikely]] require_finite(value, function, argument_name(argument));
+  if (!std::isfinite(value)) [[unlikely]] {
+    detail::fail_finite(value, function, argument_name(argument));
+  }
 }
 inline void require_finite_estimate(double value, std::string_view function,
                                     const Element& argument) {
   if (!std::isfinite(value)) [[unlikely]] {
-    require_finite_estimate(value, function, argument_name(argument));
+    detail::fail_finite_estimate(value, function, argument_name(argument));
+  }
+}
+inline void require_non_negative(double value, std::string_view function,
+                                 const Element& argument) {
+  if (!std::isfinite(value) || value < 0.0) [[unlikely]] {
+    detail::fail_non_negative(value, function, argument_name(argument));
   }
 }
 inline void require_within(double value, double lowest, double highest, std::string_view function,
                            const Element& argument) {
   if (!std::isfinite(value) || value < lowest || value > highest) [[unlikely]] {
-    require_within(value, lowest, highest, function, argument_name(argument));
+    detail::fail_within(value, lowest, highest, function, argument_name(argument));
   }
 }
 inline void require_duty(double value, std::string_view function, const Element& argument) {
   if (!std::isfinite(value) || std::abs(value) > 1.0) [[unlikely]] {
-    require_duty(value, function, argument_name(argument));
+    detail::fail_duty(value, function, argument_name(argument));
   }
 }
 inline void require_finite_result(double value, std::string_view function,
                                   const Element& result) {
-  if (!std::isfinite(value)) [[unlikely]] require_finite_result(value, function, argument_name(result));
-}
-inline void require_non_negative(double value, std::string_view function,
-                                 const Element& argument) {
-  if (!std::isfinite(value) || value < 0.0) [[unlikely]] {
-    require_non_negative(value, function, argument_name(argument));
+  if (!std::isfinite(value)) [[unlikely]] {
+    detail::fail_finite_result(value, function, argument_name(result));
   }
 }
 
@@ -93,17 +142,30 @@ inline void require_non_negative(double value, std::string_view function,
 namespace law {
 
 // Throws "<law>: <argument> must be a finite number, got <value>; <hint>" unless value is finite.
-void require_finite(double value, std::string_view law, std::string_view argument);
+inline void require_finite(double value, std::string_view law, std::string_view argument) {
+  if (!std::isfinite(value)) [[unlikely]] detail::fail_law_finite(value, law, argument);
+}
 
 // Throws unless value is finite and > 0.
-void require_positive(double value, std::string_view law, std::string_view argument);
+inline void require_positive(double value, std::string_view law, std::string_view argument) {
+  if (!std::isfinite(value) || value <= 0.0) [[unlikely]] {
+    detail::fail_law_positive(value, law, argument);
+  }
+}
 
 // Throws unless value is finite and |value| ≤ bound.
-void require_bounded(double value, double bound, std::string_view law, std::string_view argument);
+inline void require_bounded(double value, double bound, std::string_view law,
+                            std::string_view argument) {
+  if (!std::isfinite(value) || std::abs(value) > bound) [[unlikely]] {
+    detail::fail_law_bounded(value, bound, law, argument);
+  }
+}
 
 // require_finite of a vector's element, named only on failure.
 inline void require_finite(double value, std::string_view law, const Element& argument) {
-  if (!std::isfinite(value)) [[unlikely]] require_finite(value, law, argument_name(argument));
+  if (!std::isfinite(value)) [[unlikely]] {
+    detail::fail_law_finite(value, law, argument_name(argument));
+  }
 }
 
 }  // namespace law
