@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -67,6 +69,21 @@ TEST(Lcd, AlwaysEightPrintableAsciiCharacters) {
         ASSERT_GE(static_cast<int>(c), 32);
         ASSERT_LE(static_cast<int>(c), 127);
       }
+    }
+  }
+}
+
+// lcd.cpp writes the slope by hand; printf's "%+5.1f" is the layout's definition (lcd.hpp). Every
+// slope the display can show, in 0.1° steps and between them, against printf.
+TEST(Lcd, TheSlopeReadsAsPrintfWritesIt) {
+  for (int k = -1200; k <= 1200; ++k) {
+    for (double offset : {0.0, 0.0499, -0.0499, 0.05}) {
+      const double deg = k / 10.0 + offset;
+      const double shown = driving(deg).slope_rad * 180.0 / std::numbers::pi;  // as lcd.cpp
+      const double tenths = std::round(std::clamp(shown, -99.9, 99.9) * 10.0) / 10.0;
+      char expected[16];
+      std::snprintf(expected, sizeof expected, "  %+5.1fd", tenths == 0.0 ? 0.0 : tenths);
+      ASSERT_EQ(lcd_characters(driving(deg)), expected) << deg << "°";
     }
   }
 }
