@@ -4,8 +4,11 @@
 // real_time_factor is simulated seconds per wall-clock second.
 #include <benchmark/benchmark.h>
 
+#include <array>
+#include <chrono>
 #include <cmath>
 
+#include "bare_rover.hpp"
 #include "sim/physics/mujoco_model.hpp"
 #include "sim/physics/rover_mjcf.hpp"
 #include "sim/physics/rover_physics.hpp"
@@ -14,17 +17,6 @@ namespace marsokhod::sim {
 namespace {
 
 constexpr double kTimestepS = 0.001;
-constexpr int kSettleSteps = 300;
-
-MotorDrive cruise() {
-  MotorDrive drive;
-  for (std::size_t motor = 0; motor < kMotorCount; ++motor) {
-    drive.no_load_speed_radps[motor] = motor < kWheelCount ? 2.0 : 0.0;
-    drive.droop_radps_per_nm[motor] = 0.030;
-    drive.stall_torque_nm[motor] = 94.0;
-  }
-  return drive;
-}
 
 TerrainSpec terrain_for(int kind) {
   TerrainSpec terrain;
@@ -54,36 +46,68 @@ void set_real_time_factor(benchmark::State& state) {
 void BM_RoverPhysicsStep(benchmark::State& state) {
   RoverPhysics physics(Params{}, terrain_for(static_cast<int>(state.range(0))), kTimestepS);
   physics.set_drive(cruise());
-  for (int i = 0; i < kSettleSteps; ++i) physics.step();
+  for (int i = 0; i < kBareSettleSteps; ++i) physics.step();
   for (auto _ : state) physics.step();
   set_real_time_factor(state);
 }
 BENCHMARK(BM_RoverPhysicsStep)->ArgName("terrain")->Arg(0)->Arg(1)->Arg(2)->Arg(3);
 
-// The same model stepped by MuJoCo alone: the wheels' servos and the joints' locks set once, as
-// RoverPhysics sets them, the rover placed on the ground.
 void BM_BareMjStep(benchmark::State& state) {
-  const Params params;
-  const ModelPtr model = load_rover_model(params, terrain_for(0), kTimestepS);
-  const DataPtr data(mj_makeData(model.get()));
-  const MotorDrive drive = cruise();
-  for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
-    const int actuator = require_id(*model, mjOBJ_ACTUATOR, motor_actuator_name(wheel));
-    model->actuator_gainprm[actuator * mjNGAIN] = 1.0 / drive.droop_radps_per_nm[wheel];
-    model->actuator_biasprm[actuator * mjNBIAS + 2] = -1.0 / drive.droop_radps_per_nm[wheel];
-    model->actuator_forcerange[actuator * 2] = -drive.stall_torque_nm[wheel];
-    model->actuator_forcerange[actuator * 2 + 1] = drive.stall_torque_nm[wheel];
-    data->ctrl[actuator] = drive.no_load_speed_radps[wheel];
-  }
-  for (std::size_t motor : {kFrontJoint, kRearJoint}) {
-    model->eq_active[require_id(*model, mjOBJ_EQUALITY, joint_lock_name(motor))] = 1;
-  }
-  data->qpos[2] = params.geometry.wheel_radius_m + 0.005;
-  for (int i = 0; i < kSettleSteps; ++i) mj_step(model.get(), data.get());
-  for (auto _ : state) mj_step(model.get(), data.get());
+  const BareRover rover = bare_rover(terrain_for(0), kTimestepS);
+  for (auto _ : state) mj_step(rover.model.get(), rover.data.get());
   set_real_time_factor(state);
 }
 BENCHMARK(BM_BareMjStep);
+
+// Where a bare mj_step's time goes on flat hard ground: MuJoCo's own stage timers (mjData's
+// timer, which count only with the mjcb_time clock installed), per step in µs, and the contacts,
+// constraint rows and solver iterations per step; at the 1 ms step of the simulator and at 2 ms
+// (argument: the step in µs), whose real_time_factor says what a 2 ms step would buy.
+mjtNum clock_us() {
+  return std::chrono::duration<mjtNum, std::micro>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+void BM_MjStepStages(benchmark::State& state) {
+  const double timestep_s = static_cast<double>(state.range(0)) * 1e-6;
+  const BareRover rover = bare_rover(terrain_for(0), timestep_s);
+  const mjData& data = *rover.data;
+  const auto& timer = data.timer;
+  mjcb_time = clock_us;
+  std::array<double, mjNTIMER> before{};
+  for (int t = 0; t < mjNTIMER; ++t) before[t] = timer[t].duration;
+  double contacts = 0.0, rows = 0.0, iterations = 0.0;
+  for (auto _ : state) {
+    mj_step(rover.model.get(), rover.data.get());
+    contacts += data.ncon;
+    rows += data.nefc;
+    iterations += data.solver_iter;
+  }
+  mjcb_time = nullptr;
+  const double steps = static_cast<double>(state.iterations());
+  const auto per_step_us = [&](int t) { return (timer[t].duration - before[t]) / steps; };
+  state.counters["step_us"] = per_step_us(mjTIMER_STEP);
+  state.counters["kinematics_us"] = per_step_us(mjTIMER_POS_KINEMATICS);
+  state.counters["inertia_us"] = per_step_us(mjTIMER_POS_INERTIA);
+  state.counters["collision_us"] = per_step_us(mjTIMER_POS_COLLISION);
+  state.counters["make_constraints_us"] = per_step_us(mjTIMER_POS_MAKE);
+  state.counters["project_us"] = per_step_us(mjTIMER_POS_PROJECT);
+  state.counters["position_us"] = per_step_us(mjTIMER_POSITION);
+  state.counters["velocity_us"] = per_step_us(mjTIMER_VELOCITY);
+  state.counters["actuation_us"] = per_step_us(mjTIMER_ACTUATION);
+  state.counters["solver_us"] = per_step_us(mjTIMER_CONSTRAINT);
+  state.counters["integration_us"] = per_step_us(mjTIMER_STEP) - per_step_us(mjTIMER_FORWARD);
+  state.counters["contacts"] = contacts / steps;
+  state.counters["constraint_rows"] = rows / steps;
+  state.counters["solver_iterations"] = iterations / steps;
+  int warnings = 0;
+  for (const mjWarningStat& w : data.warning) warnings += w.number;
+  state.counters["mujoco_warnings"] = warnings;
+  state.counters["real_time_factor"] =
+      benchmark::Counter(steps * timestep_s, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_MjStepStages)->ArgName("step_us")->Arg(1000)->Arg(2000);
 
 }  // namespace
 }  // namespace marsokhod::sim
