@@ -90,6 +90,7 @@ TEST(ShippedScenarios, IncludeTheRequiredSet) {
         "front-wheel-walking-slope-slant-on", "front-wheel-walking-slope-slant-off",
         "rear-wheel-walking-slope-slant-on", "rolking-extended-base-slope-slant-on",
         "rolking-extended-base-slope-slant-off", "broken-center-wheel-turning",
+        "contract-on-turn",
         // Issue #15: the failsafes that need an estimate, the missions.
         "tip-over", "stuck", "odometry-square-hard", "odometry-square-sand", "waypoint-loop-hard",
         "waypoint-loop-sand", "odometry-rolking",
