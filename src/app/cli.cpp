@@ -209,8 +209,8 @@ void add_calibrate_command(CLI::App& cli, Commands& c) {
   CLI::App* cmd = c.calibrate_cmd = cli.add_subcommand(
       "calibrate", "run a calibration procedure of the thesis and write the calibration file");
   cmd->add_option("PROCEDURE", calibrate.procedure,
-                  "accelerometer, voltage, joints, motor-curve, motor-scale, response, "
-                  "load, spin or voltage-drop (--list describes them)");
+                  "accelerometer, tilt, voltage, joints, motor-curve, motor-scale, response, "
+                  "load, load-gain, spin or voltage-drop (--list describes them)");
   cmd->add_flag("--list", calibrate.list, "name the procedures");
   cmd->add_flag("--sim", calibrate.sim, "on the simulated rover (a laboratory bench)");
   cmd->add_option("--can", calibrate.can,
@@ -225,7 +225,7 @@ void add_calibrate_command(CLI::App& cli, Commands& c) {
   cmd->add_option("--duration", calibrate.duration_s,
                   "how long to measure [s] (motor-scale, response, voltage)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--icr", calibrate.icr, "the PWM period register (motor-curve, load)")
+  cmd->add_option("--icr", calibrate.icr, "the PWM period register (motor-curve, load, load-gain)")
       ->check(CLI::Range(255, 2047));
   cmd->add_option("--from", calibrate.from,
                   "voltage-drop: a scenario's --out folder with telemetry.csv")

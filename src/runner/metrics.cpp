@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/mobility/lever_geometry.hpp"
 #include "runner/soil_metrics.hpp"
 
 namespace marsokhod::runner {
@@ -46,7 +47,7 @@ const std::vector<std::string>& phase_metric_names() {
       "yaw_change_rad", "yaw_rate_mean_radps", "climb_m", "energy_used_j", "mean_abs_slip_mps",
       "max_voltage_drop_v", "final_front_joint_rad", "final_rear_joint_rad",
       "final_joint_error_rad", "max_joint_error_rad", "max_joint_bound_excess_rad",
-      "min_front_joint_rad", "max_front_joint_rad", "min_rear_joint_rad", "max_rear_joint_rad",
+      "final_front_clearance_m", "final_rear_clearance_m", "min_front_joint_rad", "max_front_joint_rad", "min_rear_joint_rad", "max_rear_joint_rad",
       "gait_state_changes", "max_lateral_speed_mps"};
   return names;
 }
@@ -229,7 +230,7 @@ void Metrics::observe_missions(const navigation::MissionStatus& m) {
 }
 
 void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
-                                std::map<std::string, double>& m) {
+                                std::map<std::string, double>& m) const {
   const Snapshot& start = *w.start;
   const std::string p = w.phase.name + ".";
   const double duration_s = end.time_s - start.time_s;
@@ -251,6 +252,11 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
   m[p + "final_front_joint_rad"] = end.joint_rad[0];
   m[p + "final_rear_joint_rad"] = end.joint_rad[1];
   m[p + "final_joint_error_rad"] = end.joint_error_rad;
+  // The axle distances c of Figure 3.3 at the true joint angles (γf = −p6, γr = p7).
+  m[p + "final_front_clearance_m"] = mobility::axle_clearance_m(
+      mobility::front_joint_bending_rad(end.joint_rad[0]), params_->geometry);
+  m[p + "final_rear_clearance_m"] = mobility::axle_clearance_m(
+      mobility::rear_joint_bending_rad(end.joint_rad[1]), params_->geometry);
   m[p + "max_joint_error_rad"] = w.max_joint_error_rad;
   m[p + "max_joint_bound_excess_rad"] = w.max_bound_excess_rad;
   // A phase without a cycle inside it has no extremes: its end state's angles.

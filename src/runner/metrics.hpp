@@ -37,7 +37,8 @@
 // final_rear_joint_rad and final_joint_error_rad (at the phase's end, to the targets in force
 // then), max_joint_error_rad (the largest joint error to the targets in force during the phase,
 // 0 without targets: Procedure 4.17's "within 0.05 rad during 1 s" over a 1-s phase),
-// max_joint_bound_excess_rad (beyond (5.3), ground truth, during the phase), min_front_joint_rad,
+// final_front_clearance_m and final_rear_clearance_m (the axle distances c_f, c_r of Figure 3.3
+// at the phase's end, from the true joint angles), max_joint_bound_excess_rad (beyond (5.3), ground truth, during the phase), min_front_joint_rad,
 // max_front_joint_rad, min_rear_joint_rad and max_rear_joint_rad (the joint angles' extremes
 // during the phase, ground truth: what the slant response (6.4) bounds), gait_state_changes,
 // max_lateral_speed_mps. A phase starts at
@@ -103,8 +104,8 @@ class Metrics {
   void observe_phases(const Session& session, double time_s, std::optional<double> voltage_drop_v,
                       double joint_error_rad, double bound_excess_rad,
                       const std::array<double, 2>& joint_rad, double lateral_speed_mps);
-  static void add_phase_metrics(const PhaseWindow& window, const Snapshot& end,
-                                std::map<std::string, double>& metrics);
+  void add_phase_metrics(const PhaseWindow& window, const Snapshot& end,
+                         std::map<std::string, double>& metrics) const;
 
   const Params* params_;
   std::vector<PhaseWindow> phases_;

@@ -104,6 +104,19 @@ TEST(ScenarioRunner, ReportsTheRunsAndEachPhasesMetrics) {
                 r.metrics.at("driving.max_" + j + "_joint_rad"), 0.01);
   }
   EXPECT_EQ(r.metrics.at("driving.gait_state_changes"), 0.0);
+  // The axle distances at the phase's end: the joints rest contracted after start-up (Remark
+  // 3.1), γ = acos(a/b), where the lever stands vertical and c = sqrt(b² − a²) = 0.3867 m (Figure
+  // 3.3); the law of cosines from the final angle must give the same c.
+  const GeometryParams& g = shipped_params().geometry;
+  const double a = g.joint_to_exterior_axle_m, b = g.center_axle_to_joint_m;
+  const double gamma_front = -r.metrics.at("driving.final_front_joint_rad");
+  const double gamma_rear = r.metrics.at("driving.final_rear_joint_rad");
+  EXPECT_DOUBLE_EQ(r.metrics.at("driving.final_front_clearance_m"),
+                   std::sqrt(a * a + b * b - 2.0 * a * b * std::cos(gamma_front)));
+  EXPECT_DOUBLE_EQ(r.metrics.at("driving.final_rear_clearance_m"),
+                   std::sqrt(a * a + b * b - 2.0 * a * b * std::cos(gamma_rear)));
+  EXPECT_NEAR(r.metrics.at("driving.final_front_clearance_m"), std::sqrt(b * b - a * a), 0.005);
+  EXPECT_NEAR(r.metrics.at("driving.final_rear_clearance_m"), 0.3867, 0.005);
 }
 
 TEST(ScenarioRunner, EvaluatesRatiosAndReportsAMissingMetric) {
