@@ -6,7 +6,9 @@
 #include <simavr/sim_elf.h>
 #include <simavr/sim_irq.h>
 
+#include <cstdarg>
 #include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 
 #include "sim/avr/at90can128_core.h"
@@ -18,6 +20,10 @@ namespace {
 avr_cycle_count_t wake_up(avr_t* /*core*/, avr_cycle_count_t when, void* /*param*/) {
   return 0 * when;  // one-shot
 }
+
+// simavr reports through its global logger (file loading, warnings); failures reach the user as
+// exceptions instead, so its messages are dropped.
+void quiet_logger(avr_t* /*core*/, const int /*level*/, const char* /*format*/, va_list /*args*/) {}
 
 // What elf_read_firmware allocated; avr_load_firmware copies what it keeps.
 void release(elf_firmware_t& firmware) {
@@ -38,6 +44,11 @@ std::uint64_t cycles_at(SimTimeNs time_ns) {
 }
 
 AvrController::AvrController(const std::string& elf_path) {
+  avr_global_logger_set(quiet_logger);
+  if (!std::filesystem::is_regular_file(elf_path)) {
+    throw std::runtime_error("firmware in the loop: no AVR image " + elf_path +
+                             " (build the images with `make firmware`)");
+  }
   elf_firmware_t firmware{};
   if (elf_read_firmware(elf_path.c_str(), &firmware) != 0) {
     throw std::runtime_error("firmware in the loop: cannot read the AVR image " + elf_path +

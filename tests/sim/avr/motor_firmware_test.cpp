@@ -201,6 +201,64 @@ TEST(MotorFirmware, EncoderDirectionAndVelocityWhileTurning) {
   EXPECT_GT(pair.firmware().pulses(), 1000U);
 }
 
+// The one known difference. The emulation restarts tim's prescaler at the instant a 0xi2 with a
+// new con arrives; the firmware can only write CANTCON after its interrupt has read and checked
+// the frame, a reaction time L of about 15 µs, during which tim still runs at the old rate. So
+// after each change the firmware's tim leads by a constant L·(1/T_old − 1/T_new) ticks more (the
+// driver sets con once, at start-up, and (3.2) uses differences of tim). Everything else, and
+// tim within one tick of that constant lead.
+constexpr double kReactionBoundNs = 20'000;
+
+double tick_ns(int con) { return 500.0 * (con + 1); }
+
+std::int16_t tim_lead(const Answers& answers) {
+  const auto tim = [](const CanFrame& frame) {
+    return static_cast<std::uint16_t>((frame.data[0] << 8) | frame.data[1]);
+  };
+  return static_cast<std::int16_t>(tim(*answers.firmware) - tim(*answers.emulation));
+}
+
+void expect_same_but_tim(const Answers& answers, const std::string& what) {
+  ASSERT_TRUE(answers.emulation.has_value() && answers.firmware.has_value()) << what;
+  CanFrame firmware = *answers.firmware;
+  firmware.data[0] = answers.emulation->data[0];
+  firmware.data[1] = answers.emulation->data[1];
+  EXPECT_EQ(firmware, *answers.emulation) << what;
+}
+
+TEST(MotorFirmware, ClockDividerChangesShiftTimByTheReactionTimeOnly) {
+  const Shaft shaft(1000.5);
+  MotorPair pair(shaft);
+  SimTimeNs t = request_time(1 * kMs);
+  int old_con = 0;
+  int lead = 0;
+  for (const std::uint8_t con : {1, 7, 255, 0, 3}) {
+    const Answers configured =
+        pair.request(t, protocol::encode(protocol::ConfigurationRequest{kNode, 511, 0, con}));
+    expect_same_but_tim(configured, "configuration con " + std::to_string(con));
+    // The lead is a constant time; read through floor() in ticks it may come out one tick apart.
+    EXPECT_NEAR(tim_lead(configured), lead, 1) << "stamped at arrival, before the change";
+    const double rate_change = 1.0 / tick_ns(old_con) - 1.0 / tick_ns(con);  // ticks per ns
+    int new_lead = 0;
+    for (int i = 0; i < 3; ++i) {
+      t = request_time(t + 5 * kMs + 111 * kUs * i);
+      const Answers answers = pair.request(t, control(false, true, 0));
+      const std::string what = "control " + std::to_string(i) + " after con " + std::to_string(con);
+      expect_same_but_tim(answers, what);
+      if (i == 0) new_lead = tim_lead(answers);
+      EXPECT_NEAR(tim_lead(answers), new_lead, 1) << what << ": the lead must stay constant";
+    }
+    const double shift = new_lead - lead;
+    EXPECT_GE(shift * rate_change, 0.0) << "con " << con << ": the shift follows the rate change";
+    EXPECT_LE(std::abs(shift), kReactionBoundNs * std::abs(rate_change) + 1.0)
+        << "con " << old_con << " → " << int{con} << ": a reaction time over 20 µs";
+    lead = new_lead;
+    old_con = con;
+    t = request_time(t + 3 * kMs);
+  }
+  EXPECT_NE(lead, 0) << "the firmware cannot react in zero time";
+}
+
 TEST(MotorFirmware, MalformedFramesGetNoAnswerFromEither) {
   const Shaft shaft(1000.5);
   MotorPair pair(shaft);
