@@ -191,16 +191,16 @@ int main(void) {
   DDRB |= (1 << PB6);
   DDRE |= (1 << PE3);
   set_leds(0, 0);
-  lcd_init();
+  can_init(MK_SENSOR_NODE);
   ADMUX = (1 << REFS0);
   ADCSRA = (1 << ADEN) | (1 << ADIE) | (1 << ADPS2) | (1 << ADPS1) | (1 << ADPS0);
   ADCSRA |= (1 << ADSC);
   TCCR1A = 0;
   TCCR1B = (1 << CS11) | (1 << CS10); /* 16 MHz/64 */
   TIMSK1 = (1 << TOIE1);
-  can_init(MK_SENSOR_NODE);
   wdt_enable(WDTO_1S);
   sei();
+  lcd_init(); /* 45 ms of waiting; the bus is served meanwhile */
   for (;;) {
     wdt_reset();
     if (display_dirty) {
