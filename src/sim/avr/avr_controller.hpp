@@ -34,7 +34,8 @@ class AvrController {
   AvrController(const AvrController&) = delete;
   AvrController& operator=(const AvrController&) = delete;
 
-  // Runs the firmware until its clock reaches time_ns (not before the current time). Throws
+  // Runs the firmware until its clock reaches time_ns (at most one instruction beyond it; a time
+  // already passed does nothing). Throws
   // std::runtime_error if the core crashed (bad opcode, stack overflow).
   void run_until(SimTimeNs time_ns);
   SimTimeNs time_ns() const;

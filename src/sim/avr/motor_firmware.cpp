@@ -19,18 +19,19 @@ std::int64_t pulse_index(double shaft_angle_rad, double pulses_per_rad) {
 }  // namespace
 
 MotorFirmware::MotorFirmware(const std::string& elf_path, double initial_shaft_angle_rad,
-                             int pulses_per_rev)
+                             int pulses_per_rev, std::uint64_t seed)
     : controller_(elf_path),
       pulses_per_rad_(pulses_per_rev / (2.0 * std::numbers::pi)),
       shaft_angle_rad_(initial_shaft_angle_rad),
-      pulse_index_(pulse_index(initial_shaft_angle_rad, pulses_per_rad_)) {
+      pulse_index_(pulse_index(initial_shaft_angle_rad, pulses_per_rad_)),
+      random_(seed) {
   if (pulses_per_rev <= 0) {
     throw std::invalid_argument("motor firmware: the encoder pulses per revolution must be > 0");
   }
 }
 
 void MotorFirmware::schedule_crossings(SimTimeNs time_ns, double shaft_angle_rad) {
-  const SimTimeNs start_ns = controller_.time_ns();
+  const SimTimeNs start_ns = time_ns_;
   const std::int64_t index = pulse_index(shaft_angle_rad, pulses_per_rad_);
   const bool negative = index < pulse_index_;
   const double span_rad = shaft_angle_rad - shaft_angle_rad_;
@@ -44,6 +45,9 @@ void MotorFirmware::schedule_crossings(SimTimeNs time_ns, double shaft_angle_rad
       line_negative_ = negative;
       events_.push_back({at_ns, 'D', 0, negative});
     }
+    if (lost_pulse_fraction_ > 0.0 && random_.bernoulli(lost_pulse_fraction_)) {
+      continue;
+    }
     events_.push_back({at_ns + kPulseDelayNs, 'E', 6, true});
     events_.push_back({at_ns + kPulseDelayNs + kPulseWidthNs, 'E', 6, false});
   }
@@ -52,12 +56,13 @@ void MotorFirmware::schedule_crossings(SimTimeNs time_ns, double shaft_angle_rad
 }
 
 void MotorFirmware::advance(SimTimeNs time_ns, double shaft_angle_rad) {
-  if (time_ns < controller_.time_ns()) {
+  if (time_ns < time_ns_) {
     throw std::invalid_argument("motor firmware: time must not go back (" +
-                                std::to_string(time_ns) + " ns < " +
-                                std::to_string(controller_.time_ns()) + " ns)");
+                                std::to_string(time_ns) + " ns < " + std::to_string(time_ns_) +
+                                " ns)");
   }
   schedule_crossings(time_ns, shaft_angle_rad);
+  time_ns_ = time_ns;
   // Events of one sample are in time order, and every new one lies after the older ones.
   while (!events_.empty() && events_.front().time_ns <= time_ns) {
     const PinEvent event = events_.front();
@@ -75,6 +80,19 @@ double MotorFirmware::duty() const {
   const double icr = controller_.register16(kIcr1);
   const double magnitude = icr > 0 ? controller_.register16(kOcr1b) / icr : 0.0;
   return (controller_.register8(kPortc) & kDrvPin) ? -magnitude : magnitude;
+}
+
+}  // namespace marsokhod::sim::avr
+
+namespace marsokhod::sim::avr {
+
+int MotorFirmware::icr() const { return controller_.register16(kIcr1); }
+
+void MotorFirmware::set_lost_pulse_fraction(double fraction) {
+  if (!(fraction >= 0.0 && fraction <= 1.0)) {
+    throw std::invalid_argument("motor firmware: the lost pulse fraction must lie in 0..1");
+  }
+  lost_pulse_fraction_ = fraction;
 }
 
 }  // namespace marsokhod::sim::avr

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "sim/avr/avr_controller.hpp"
+#include "sim/electrics/seeded_random.hpp"
 
 namespace marsokhod::sim::avr {
 
@@ -25,7 +26,9 @@ inline constexpr SimTimeNs kPulseWidthNs = 1000;
 class MotorFirmware {
  public:
   // Throws like AvrController, and std::invalid_argument for pulses_per_rev ≤ 0.
-  MotorFirmware(const std::string& elf_path, double initial_shaft_angle_rad, int pulses_per_rev);
+  // seed: the draws of the lost pulses (set_lost_pulse_fraction).
+  MotorFirmware(const std::string& elf_path, double initial_shaft_angle_rad, int pulses_per_rev,
+                std::uint64_t seed = 0);
 
   // Runs the firmware to time_ns while the shaft moves linearly to shaft_angle_rad.
   void advance(SimTimeNs time_ns, double shaft_angle_rad);
@@ -36,6 +39,10 @@ class MotorFirmware {
 
   // d = (−1)^drv·pwm/icr from the firmware's registers: OCR1B, ICR1 and PC2.
   double duty() const;
+  int icr() const;
+  // The loose encoder connection: each pulse is lost with this probability (0 = healthy); the
+  // LS7184 still announces direction changes. Throws std::invalid_argument outside 0..1.
+  void set_lost_pulse_fraction(double fraction);
   // Pulses given to T3 so far (to check a test's trajectory).
   std::uint64_t pulses() const { return pulses_; }
   AvrController& controller() { return controller_; }
@@ -55,7 +62,10 @@ class MotorFirmware {
   std::int64_t pulse_index_;
   bool line_negative_ = false;
   std::deque<PinEvent> events_;
+  SimTimeNs time_ns_ = 0;  // of the last advance (the core may have run a few cycles past it)
   std::uint64_t pulses_ = 0;
+  double lost_pulse_fraction_ = 0.0;
+  SeededRandom random_;
 };
 
 }  // namespace marsokhod::sim::avr
