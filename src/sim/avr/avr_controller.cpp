@@ -25,6 +25,10 @@ avr_cycle_count_t wake_up(avr_t* /*core*/, avr_cycle_count_t when, void* /*param
 // exceptions instead, so its messages are dropped.
 void quiet_logger(avr_t* /*core*/, const int /*level*/, const char* /*format*/, va_list /*args*/) {}
 
+// simavr's default sleep waits in wall-clock time (usleep) to pace a sleeping core to real time;
+// here time is a value: a sleeping core skips to its next event at once.
+void skip_sleep(avr_t* /*core*/, avr_cycle_count_t /*how_long*/) {}
+
 // What elf_read_firmware allocated; avr_load_firmware copies what it keeps.
 void release(elf_firmware_t& firmware) {
   std::free(firmware.flash);
@@ -64,12 +68,23 @@ AvrController::AvrController(const std::string& elf_path) {
     throw std::runtime_error("firmware in the loop: cannot initialise the AT90CAN128 core");
   }
   core_->log = LOG_NONE;
+  core_->sleep = skip_sleep;
   avr_load_firmware(core_, &firmware);
   release(firmware);
   core_->frequency = static_cast<std::uint32_t>(kClockHz);
   core_->avcc = static_cast<std::uint32_t>(kAdcReferenceMillivolts);
   core_->vcc = core_->avcc;
   can_ = std::make_unique<CanController>(core_);
+  for (std::size_t port = 0; port < port_irqs_.size(); ++port) {
+    for (std::size_t pin = 0; pin < 8; ++pin) {
+      port_irqs_[port][pin] = avr_io_getirq(
+          core_, AVR_IOCTL_IOPORT_GETIRQ(static_cast<char>('A' + port)), static_cast<int>(pin));
+    }
+  }
+  for (std::size_t channel = 0; channel < adc_irqs_.size(); ++channel) {
+    adc_irqs_[channel] =
+        avr_io_getirq(core_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + static_cast<int>(channel));
+  }
 }
 
 AvrController::~AvrController() {
@@ -119,8 +134,8 @@ void AvrController::set_pin(char port, int pin, bool high) {
     throw std::invalid_argument("firmware in the loop: no pin P" + std::string(1, port) +
                                 std::to_string(pin) + " on the AT90CAN128 (PA0..PG7)");
   }
-  avr_irq_t* irq = avr_io_getirq(core_, AVR_IOCTL_IOPORT_GETIRQ(port), pin);
-  avr_raise_irq(irq, high ? 1 : 0);
+  avr_raise_irq(port_irqs_[static_cast<std::size_t>(port - 'A')][static_cast<std::size_t>(pin)],
+                high ? 1 : 0);
 }
 
 void AvrController::set_adc_counts(int channel, std::uint16_t counts) {
@@ -130,9 +145,13 @@ void AvrController::set_adc_counts(int channel, std::uint16_t counts) {
                                 " (0..1023) out of range");
   }
   // simavr converts reading = mV·1023/AVCC (integer); the least voltage that reads `counts`.
-  const std::int64_t millivolts = (counts * kAdcReferenceMillivolts + 1022) / 1023;
-  avr_irq_t* irq = avr_io_getirq(core_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + channel);
-  avr_raise_irq(irq, static_cast<std::uint32_t>(millivolts));
+  const auto millivolts =
+      static_cast<std::uint32_t>((counts * kAdcReferenceMillivolts + 1022) / 1023);
+  const auto index = static_cast<std::size_t>(channel);
+  if (millivolts != adc_millivolts_[index]) {
+    adc_millivolts_[index] = millivolts;
+    avr_raise_irq(adc_irqs_[index], millivolts);
+  }
 }
 
 std::uint8_t AvrController::register8(std::uint16_t address) const { return core_->data[address]; }

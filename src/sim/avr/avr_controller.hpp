@@ -6,6 +6,7 @@
 // the same outputs, bit for bit.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -59,6 +60,10 @@ class AvrController {
  private:
   avr_t* core_ = nullptr;
   std::unique_ptr<CanController> can_;
+  // simavr finds an IRQ by a linear search over its I/O modules: looked up once.
+  std::array<std::array<avr_irq_t*, 8>, 7> port_irqs_{};  // ports A..G, pins 0..7
+  std::array<avr_irq_t*, 8> adc_irqs_{};
+  std::array<std::uint32_t, 8> adc_millivolts_{};
 };
 
 std::uint64_t cycles_at(SimTimeNs time_ns);
