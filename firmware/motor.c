@@ -11,7 +11,8 @@
  *   (15.6 kHz at icr = 511), OCR1B = pwm: d = (−1)^drv·pwm/icr. ICR1 is not double-buffered,
  *   which is why the thesis changes icr only at pwm ≈ 0.
  * - tim: the CAN timer at 2 MHz/(con+1) (CANTCON = con); a response carries CANSTM, the timer's
- *   value stamped by the hardware when the request arrived.
+ *   value stamped by the hardware when the request arrived, less what the timer gained while a
+ *   con change waited for the interrupt (change_con).
  * - enc: Timer 3 counts the rising edges on T3, whatever the direction.
  * - dir, stp: INT0 on either edge of the direction line; with eim = 1 the interrupt sets
  *   stp = enc and dir to the line. eim = 0 masks INT0, and unmasking clears the flag a masked
@@ -42,6 +43,7 @@
 static uint8_t node;
 static uint16_t icr = MK_ICR_RESET;
 static uint8_t con;
+static uint16_t tim_offset; /* CANTIM − tim: the ticks the CAN timer gained over con changes */
 static volatile uint16_t stp;
 static volatile uint8_t dir;
 static volatile uint16_t vel;
@@ -50,6 +52,7 @@ static uint8_t next_slice;
 static uint16_t enc_at_slice_start;
 static volatile uint16_t timer2_high; /* Timer 2 overflows: bits 23..8 of the 2 MHz count */
 static uint32_t slice_end;            /* Timer 2 count at which the current slice closes */
+static volatile uint8_t slice_closed;  /* the main loop's sign of life for the watchdog */
 
 static uint16_t read_u16(const uint8_t *data) { return (uint16_t)((data[0] << 8) | data[1]); }
 static void write_u16(uint8_t *data, uint16_t value) {
@@ -81,6 +84,7 @@ static void close_slice(void) {
   }
   vel = window > MK_VEL_MAX ? MK_VEL_MAX : (uint16_t)window;
   slice_end += SLICE_TIM_TICKS * (con + 1U);
+  slice_closed = 1;
 }
 
 /* Arms Timer 2's compare for slice_end if it lies within the current 256-count window. */
@@ -146,7 +150,7 @@ static void control(const can_frame_t *frame) {
   if (frame->dlc != MK_DLC_CONTROL_REQUEST || (flags & MK_CONTROL_RESERVED_BITS) || pwm > icr) {
     return;
   }
-  write_u16(response + MK_CONTROL_RESPONSE_TIM, frame->stamp);
+  write_u16(response + MK_CONTROL_RESPONSE_TIM, (uint16_t)(frame->stamp - tim_offset));
   write_u16(response + MK_CONTROL_RESPONSE_ENC, encoder_count());
   write_u16(response + MK_CONTROL_RESPONSE_STP, stp);
   velocity = vel;
@@ -159,6 +163,20 @@ static void control(const can_frame_t *frame) {
            response);
 }
 
+/* tim runs at the new rate from the request's arrival on, as the thesis' clock would. CANTCON can
+ * only be written now, after the interrupt's reaction, and the CAN timer has meanwhile counted
+ * `elapsed` ticks at the old rate where the new rate would have counted elapsed·(con+1)/(new+1):
+ * tim_offset takes the difference up (to within a tick of the old clock). */
+static void change_con(uint8_t new_con, uint16_t stamp) {
+  const uint16_t elapsed = (uint16_t)(can_time() - stamp);
+  const uint16_t elapsed_at_new_rate =
+      (uint16_t)(((uint32_t)elapsed * (con + 1U) + new_con / 2U) / (new_con + 1U));
+  can_set_timer_divider(new_con);
+  tim_offset = (uint16_t)(tim_offset + elapsed - elapsed_at_new_rate);
+  con = new_con;
+  schedule_slice((uint16_t)(can_time() - tim_offset));
+}
+
 static void configure(const can_frame_t *frame) {
   const uint16_t new_icr = read_u16(frame->data + MK_CONFIGURATION_REQUEST_ICR);
   const uint16_t pwm = read_u16(frame->data + MK_CONFIGURATION_REQUEST_PWM);
@@ -168,15 +186,13 @@ static void configure(const can_frame_t *frame) {
       new_icr > MK_ICR_MAX || pwm > new_icr) {
     return;
   }
+  write_u16(response + MK_CONFIGURATION_RESPONSE_TIM, (uint16_t)(frame->stamp - tim_offset));
   if (new_con != con) {
-    con = new_con;
-    can_set_timer_divider(con);
-    schedule_slice(can_time());
+    change_con(new_con, frame->stamp);
   }
   icr = new_icr;
   ICR1 = icr;
   OCR1B = pwm;
-  write_u16(response + MK_CONFIGURATION_RESPONSE_TIM, frame->stamp);
   can_send(CAN_TX_MOB, (uint8_t)((node << 4) | MK_TYPE_CONFIGURATION_RESPONSE),
            MK_DLC_CONFIGURATION_RESPONSE, response);
 }
@@ -217,7 +233,10 @@ int main(void) {
   wdt_enable(WDTO_1S);
   sei();
   for (;;) {
-    wdt_reset();
+    if (slice_closed) { /* at least every T(255)/16 = 0.52 s: the timers and interrupts run */
+      slice_closed = 0;
+      wdt_reset();
+    }
     set_sleep_mode(SLEEP_MODE_IDLE);
     sleep_mode();
   }

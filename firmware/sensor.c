@@ -10,8 +10,8 @@
  * answers yaw, acc¹⁻³, one tilt channel and vcc; the tilt channel alternates with every 0x81,
  * front (j = 0) first.
  * 0x82 → 0x83: sets dog (0 disables); arming a disabled switch restarts its timer.
- * Dead man's switch: Timer 1 at 16 MHz/64 overflows every 65536·64/16 MHz = 0.262144 s; after dog
- * overflows without a 0x80 µ8 sends 0xi0 with drv = 0, eim = 1, pwm = 0 to µ0–µ7 (MObs 2..9), once
+ * Dead man's switch: Timer 1 at 16 MHz/64 overflows every 65536·64/16 MHz = 0.262144 s, counted
+ * from the 0x80's arrival (its CAN time stamp); after dog overflows without a 0x80 µ8 sends 0xi0 with drv = 0, eim = 1, pwm = 0 to µ0–µ7 (MObs 2..9), once
  * per silence.
  * LCD: the eight characters and the supply voltage U = 0.06768·vcc − 41.0823 V (Procedure 3.5),
  * or, after a second without 0x80, the idle text scrolling. Frames µ8 cannot use are ignored. */
@@ -40,6 +40,7 @@ static uint8_t overflows_since_request;
 static uint8_t dead_man_fired;
 static volatile uint8_t idle_overflows = IDLE_AFTER_OVERFLOWS;
 static volatile uint8_t display_dirty = 1;
+static volatile uint8_t timer_overflowed; /* the main loop's sign of life for the watchdog */
 static char characters[MK_LCD_CHARACTERS] = {' ', ' ', ' ', ' ', ' ', ' ', ' ', ' '};
 static volatile uint16_t displayed_vcc;
 
@@ -50,9 +51,13 @@ ISR(ADC_vect) {
   ADCSRA |= (1 << ADSC);
 }
 
-static void restart_dead_man(void) {
+/* Restarts the switch as of the request's arrival: Timer 1 (4 µs a count) starts at the time
+ * that has passed since, measured on the CAN timer (0.5 µs a count at CANTCON = 0), so the
+ * interrupt's reaction time does not postpone the stop. */
+static void restart_dead_man(uint16_t stamp) {
+  const uint16_t elapsed = (uint16_t)(can_time() - stamp);
   GTCCR = (1 << PSR310); /* restart Timer 1's prescaler too */
-  TCNT1 = 0;
+  TCNT1 = elapsed / 8;
   TIFR1 = (1 << TOV1);
   overflows_since_request = 0;
   dead_man_fired = 0;
@@ -68,6 +73,7 @@ static void stop_motors(void) {
 }
 
 ISR(TIMER1_OVF_vect) {
+  timer_overflowed = 1;
   if (idle_overflows < 255) {
     ++idle_overflows;
     display_dirty = 1;
@@ -118,7 +124,7 @@ static void measurement_request(const can_frame_t *frame) {
     }
     text[i] = (char)character;
   }
-  restart_dead_man();
+  restart_dead_man(frame->stamp);
   for (i = 0; i < MK_LCD_CHARACTERS; ++i) {
     characters[i] = text[i];
   }
@@ -134,7 +140,7 @@ static void dead_man_request(const can_frame_t *frame) {
     return;
   }
   if (dog == 0 && new_dog > 0) {
-    restart_dead_man();
+    restart_dead_man(frame->stamp);
   }
   dog = new_dog;
   can_send(CAN_TX_MOB, (MK_SENSOR_NODE << 4) | MK_TYPE_DEAD_MAN_RESPONSE,
@@ -202,7 +208,10 @@ int main(void) {
   sei();
   lcd_init(); /* 45 ms of waiting; the bus is served meanwhile */
   for (;;) {
-    wdt_reset();
+    if (timer_overflowed) { /* every 0.262 s: Timer 1 and the interrupts run */
+      timer_overflowed = 0;
+      wdt_reset();
+    }
     if (display_dirty) {
       refresh_display();
     }

@@ -116,7 +116,7 @@ static const struct at90can128_mcu kAt90can128 = {
         .e2end = E2END,
         .vector_size = 4,
         .signature = {SIGNATURE_0, SIGNATURE_1, SIGNATURE_2},
-        .fuse = {0xFF, 0x99, 0xFF}, /* docs/firmware.md: external 16 MHz crystal */
+        .fuse = {0xFF, 0xD1, 0xFF}, /* docs/firmware.md: 16 MHz crystal, JTAG off (ADC4–7) */
         .lockbits = 0xFF,
         .reset_flags = {.porf = AVR_IO_REGBIT(MCUSR, PORF),
                         .extrf = AVR_IO_REGBIT(MCUSR, EXTRF),

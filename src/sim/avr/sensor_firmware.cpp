@@ -13,7 +13,11 @@ constexpr std::uint8_t kWhitePin = 1U << 3;
 
 }  // namespace
 
-SensorFirmware::SensorFirmware(const std::string& elf_path) : controller_(elf_path) {
+SensorFirmware::SensorFirmware(const std::string& elf_path, bool with_display)
+    : controller_(elf_path), with_display_(with_display) {
+  if (!with_display_) {
+    return;
+  }
   avr_t* core = controller_.core();
   hd44780_init(core, &lcd_, 16, 2);
   const auto pin = [core](int number) {
@@ -41,6 +45,9 @@ bool SensorFirmware::green_led() const { return controller_.register8(kPortb) & 
 bool SensorFirmware::white_led() const { return !(controller_.register8(kPorte) & kWhitePin); }
 
 std::string SensorFirmware::display() const {
+  if (!with_display_) {
+    return {};
+  }
   return std::string(lcd_.vram, lcd_.vram + 16);
 }
 

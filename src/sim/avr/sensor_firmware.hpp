@@ -1,7 +1,9 @@
 // The sensor controller µ8 running its real firmware (firmware/sensor.c, image mu8.elf) in
-// simavr: the seven analog inputs as ADC counts, the LEDs read from the pins, and the
+// simavr: the seven analog inputs as ADC counts, the LEDs read from the pins, and on request the
 // 16-character display through simavr's HD44780 part wired to port A as chapter 3.3's pin table
-// has it (D4–D7 on PA4–PA7, E on PA2, R/W on PA1, RS on PA0).
+// has it (D4–D7 on PA4–PA7, E on PA2, R/W on PA1, RS on PA0). The part prints every byte it
+// receives on standard output, which `scenario --json` needs for itself: the rover's µ8
+// (rover_hardware.hpp) runs without it, as the simulator shows no display anyway.
 #pragma once
 
 extern "C" {  // simavr's parts headers declare C functions without extern "C" of their own
@@ -29,7 +31,7 @@ struct SensorCounts {
 
 class SensorFirmware {
  public:
-  explicit SensorFirmware(const std::string& elf_path);
+  explicit SensorFirmware(const std::string& elf_path, bool with_display = false);
 
   void advance(SimTimeNs time_ns) { controller_.run_until(time_ns); }
   // The inputs from now on (the firmware's ADC ring converts one channel every 104 µs).
@@ -39,12 +41,13 @@ class SensorFirmware {
 
   bool green_led() const;  // led⁰ on PB6, on when high
   bool white_led() const;  // led¹ on PE3 with a pull-up, on when low
-  // The first line of the display, 16 characters.
+  // The first line of the display, 16 characters; empty without the display.
   std::string display() const;
   AvrController& controller() { return controller_; }
 
  private:
   AvrController controller_;
+  bool with_display_;
   hd44780_t lcd_{};
 };
 
