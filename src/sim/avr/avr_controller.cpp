@@ -47,7 +47,7 @@ std::uint64_t cycles_at(SimTimeNs time_ns) {
   return static_cast<std::uint64_t>(time_ns) * (kClockHz / 1'000'000) / 1000;
 }
 
-AvrController::AvrController(const std::string& elf_path) {
+AvrController::AvrController(const std::string& elf_path, SimTimeNs boot_ns) : boot_ns_(boot_ns) {
   avr_global_logger_set(quiet_logger);
   if (!std::filesystem::is_regular_file(elf_path)) {
     throw std::runtime_error("firmware in the loop: no AVR image " + elf_path +
@@ -85,6 +85,9 @@ AvrController::AvrController(const std::string& elf_path) {
     adc_irqs_[channel] =
         avr_io_getirq(core_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + static_cast<int>(channel));
   }
+  if (boot_ns_ > 0) {
+    run_until(0);  // the start-up, before time 0
+  }
 }
 
 AvrController::~AvrController() {
@@ -98,11 +101,11 @@ AvrController::~AvrController() {
 std::uint64_t AvrController::cycle() const { return core_->cycle; }
 
 SimTimeNs AvrController::time_ns() const {
-  return static_cast<SimTimeNs>(core_->cycle * 1000 / (kClockHz / 1'000'000));
+  return static_cast<SimTimeNs>(core_->cycle * 1000 / (kClockHz / 1'000'000)) - boot_ns_;
 }
 
 void AvrController::run_until(SimTimeNs time_ns) {
-  const std::uint64_t target = cycles_at(time_ns);
+  const std::uint64_t target = cycles_at(time_ns + boot_ns_);
   if (target <= core_->cycle) {
     return;
   }
@@ -123,7 +126,7 @@ bool AvrController::deliver(const protocol::CanFrame& frame) { return can_->deli
 std::vector<TimedCanFrame> AvrController::take_transmitted() {
   std::vector<TimedCanFrame> frames;
   for (const CanTransmission& sent : can_->take_transmitted()) {
-    frames.push_back({static_cast<SimTimeNs>(sent.cycle * 1000 / (kClockHz / 1'000'000)),
+    frames.push_back({static_cast<SimTimeNs>(sent.cycle * 1000 / (kClockHz / 1'000'000)) - boot_ns_,
                       sent.frame});
   }
   return frames;

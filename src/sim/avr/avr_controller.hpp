@@ -29,8 +29,9 @@ struct TimedCanFrame {
 class AvrController {
  public:
   // Loads elf_path. Throws std::runtime_error naming the file when it cannot be read or is no
-  // AVR image.
-  explicit AvrController(const std::string& elf_path);
+  // AVR image. boot_ns: how long the chip has run before time 0 (the firmware's start-up done);
+  // its clocks, the CAN timer among them, count from its reset.
+  explicit AvrController(const std::string& elf_path, SimTimeNs boot_ns = 0);
   ~AvrController();
   AvrController(const AvrController&) = delete;
   AvrController& operator=(const AvrController&) = delete;
@@ -58,6 +59,7 @@ class AvrController {
   avr_t* core() { return core_; }
 
  private:
+  SimTimeNs boot_ns_;
   avr_t* core_ = nullptr;
   std::unique_ptr<CanController> can_;
   // simavr finds an IRQ by a linear search over its I/O modules: looked up once.

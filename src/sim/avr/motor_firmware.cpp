@@ -19,8 +19,8 @@ std::int64_t pulse_index(double shaft_angle_rad, double pulses_per_rad) {
 }  // namespace
 
 MotorFirmware::MotorFirmware(const std::string& elf_path, double initial_shaft_angle_rad,
-                             int pulses_per_rev, std::uint64_t seed)
-    : controller_(elf_path),
+                             int pulses_per_rev, std::uint64_t seed, SimTimeNs boot_ns)
+    : controller_(elf_path, boot_ns),
       pulses_per_rad_(pulses_per_rev / (2.0 * std::numbers::pi)),
       shaft_angle_rad_(initial_shaft_angle_rad),
       pulse_index_(pulse_index(initial_shaft_angle_rad, pulses_per_rad_)),

@@ -28,7 +28,7 @@ class MotorFirmware {
   // Throws like AvrController, and std::invalid_argument for pulses_per_rev ≤ 0.
   // seed: the draws of the lost pulses (set_lost_pulse_fraction).
   MotorFirmware(const std::string& elf_path, double initial_shaft_angle_rad, int pulses_per_rev,
-                std::uint64_t seed = 0);
+                std::uint64_t seed = 0, SimTimeNs boot_ns = 0);
 
   // Runs the firmware to time_ns while the shaft moves linearly to shaft_angle_rad.
   void advance(SimTimeNs time_ns, double shaft_angle_rad);

@@ -6,6 +6,11 @@ namespace marsokhod::sim::avr {
 namespace {
 
 constexpr std::uint64_t kNoiseStream = 40;  // a stream of its own (rover_firmware.cpp uses 10–38)
+// The controllers are on before the onboard computer starts the driver: their start-up (µ8's
+// display takes 47 ms) is over at time 0, when the driver's first frames may arrive. Two whole
+// periods T(0) = 32.768 ms of the CAN timer: at time 0 tim reads 0 and vel's slices end where the
+// emulation's do.
+constexpr SimTimeNs kBootNs = 2 * 32'768'000;
 
 std::string image(const std::string& dir, std::size_t controller) {
   return dir + "/mu" + std::to_string(controller) + ".elf";
@@ -16,7 +21,7 @@ std::string image(const std::string& dir, std::size_t controller) {
 RoverHardware::RoverHardware(const std::string& firmware_dir, const Params& params,
                              const SensorTruth& sensors, std::uint64_t seed,
                              const SensorTruthSample& initial_sensors)
-    : sensor_(image(firmware_dir, kMotorCount)),
+    : sensor_(image(firmware_dir, kMotorCount), false, kBootNs),
       truth_(sensors),
       front_pot_(sensors.tilt_backlash_rad, initial_sensors.front_tilt_rad),
       rear_pot_(sensors.tilt_backlash_rad, initial_sensors.rear_tilt_rad),
@@ -24,7 +29,7 @@ RoverHardware::RoverHardware(const std::string& firmware_dir, const Params& para
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     motors_.push_back(std::make_unique<MotorFirmware>(
         image(firmware_dir, i), params.motors.initial_position_rad[i],
-        params.motors.encoder_pulses_per_rev, derive_seed(seed, kNoiseStream + 1 + i)));
+        params.motors.encoder_pulses_per_rev, derive_seed(seed, kNoiseStream + 1 + i), kBootNs));
   }
   sensor_.set_inputs(counts(initial_sensors, 0));
 }

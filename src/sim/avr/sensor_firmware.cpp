@@ -13,8 +13,9 @@ constexpr std::uint8_t kWhitePin = 1U << 3;
 
 }  // namespace
 
-SensorFirmware::SensorFirmware(const std::string& elf_path, bool with_display)
-    : controller_(elf_path), with_display_(with_display) {
+SensorFirmware::SensorFirmware(const std::string& elf_path, bool with_display,
+                               SimTimeNs boot_ns)
+    : controller_(elf_path, boot_ns), with_display_(with_display) {
   if (!with_display_) {
     return;
   }

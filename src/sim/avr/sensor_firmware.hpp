@@ -31,7 +31,8 @@ struct SensorCounts {
 
 class SensorFirmware {
  public:
-  explicit SensorFirmware(const std::string& elf_path, bool with_display = false);
+  explicit SensorFirmware(const std::string& elf_path, bool with_display = false,
+                          SimTimeNs boot_ns = 0);
 
   void advance(SimTimeNs time_ns) { controller_.run_until(time_ns); }
   // The inputs from now on (the firmware's ADC ring converts one channel every 104 µs).
