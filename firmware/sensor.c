@@ -40,11 +40,20 @@ static uint8_t overflows_since_request;
 static uint8_t dead_man_fired;
 static volatile uint8_t idle_overflows = IDLE_AFTER_OVERFLOWS;
 static volatile uint8_t display_dirty = 1;
-static volatile uint8_t timer_overflowed; /* the main loop's sign of life for the watchdog */
+/* The watchdog's food: set every 1024 conversions (107 ms) by the ADC interrupt, which runs
+ * whatever the bus does. (Timer 1 would not do: a 0x80 every 15.6 ms keeps restarting it, and the
+ * first firmware, fed on its overflows, was reset by its watchdog a second into driving, which
+ * disarmed the dead man's switch.) */
+static volatile uint8_t conversions_done;
 static char characters[MK_LCD_CHARACTERS] = {' ', ' ', ' ', ' ', ' ', ' ', ' ', ' '};
 static volatile uint16_t displayed_vcc;
 
 ISR(ADC_vect) {
+  static uint16_t conversions;
+  if (++conversions == 1024) {
+    conversions = 0;
+    conversions_done = 1;
+  }
   readings[channel] = ADC;
   channel = (uint8_t)((channel + 1) % ADC_CHANNELS);
   ADMUX = (uint8_t)((1 << REFS0) | channel);
@@ -73,7 +82,6 @@ static void stop_motors(void) {
 }
 
 ISR(TIMER1_OVF_vect) {
-  timer_overflowed = 1;
   if (idle_overflows < 255) {
     ++idle_overflows;
     display_dirty = 1;
@@ -208,8 +216,8 @@ int main(void) {
   sei();
   lcd_init(); /* 45 ms of waiting; the bus is served meanwhile */
   for (;;) {
-    if (timer_overflowed) { /* every 0.262 s: Timer 1 and the interrupts run */
-      timer_overflowed = 0;
+    if (conversions_done) {
+      conversions_done = 0;
       wdt_reset();
     }
     if (display_dirty) {
