@@ -50,7 +50,10 @@ static volatile uint16_t vel;
 static uint16_t slice_pulses[SLICES];
 static uint8_t next_slice;
 static uint16_t enc_at_slice_start;
-static volatile uint16_t timer2_high; /* Timer 2 overflows: bits 23..8 of the 2 MHz count */
+/* Timer 2 overflows: bits 31..8 of the 2 MHz count, which wraps after 2^32 ticks (35.8 min); all
+ * comparisons are of differences. (Kept in 16 bits, the count wrapped after 8.4 s and vel froze:
+ * found by scenario straight-and-spin --firmware.) */
+static volatile uint32_t timer2_high;
 static uint32_t slice_end;            /* Timer 2 count at which the current slice closes */
 static volatile uint8_t slice_closed;  /* the main loop's sign of life for the watchdog */
 
@@ -65,11 +68,11 @@ static uint16_t encoder_count(void) { return TCNT3; }
 /* The 2 MHz count of Timer 2; interrupts must be off. */
 static uint32_t timer2_count(void) {
   uint8_t low = TCNT2;
-  uint16_t high = timer2_high;
+  uint32_t high = timer2_high;
   if ((TIFR2 & (1 << TOV2)) && low < 0x80) {
     ++high; /* overflowed before TCNT2 was read, not yet counted */
   }
-  return ((uint32_t)high << 8) | low;
+  return (high << 8) | low;
 }
 
 static void close_slice(void) {
@@ -107,7 +110,7 @@ static void schedule_slice(uint16_t tim_now) {
 
 ISR(TIMER2_OVF_vect) {
   ++timer2_high;
-  const uint32_t now = (uint32_t)timer2_high << 8;
+  const uint32_t now = timer2_high << 8;
   while ((int32_t)(slice_end - now) <= 0) {
     close_slice(); /* ends on the overflow itself (compare value 0), or armed too late */
   }

@@ -250,6 +250,22 @@ TEST(MotorFirmware, ClockDividerChangesKeepTimWithinATickOfTheOldClock) {
   }
 }
 
+// Past 2^24 ticks of the 2 MHz Timer 2 (8.39 s): the first firmware kept Timer 2's count in 24
+// bits, and its vel froze there.
+TEST(MotorFirmware, VelocityKeepsItsWindowPastEightSeconds) {
+  Shaft shaft(1000.5);
+  shaft.move_until(request_time(2 * kMs), 0);
+  shaft.move_until(request_time(9000 * kMs), 1);   // 15625 pulses/s until 9 s
+  shaft.move_until(request_time(9100 * kMs), 0);   // stands
+  MotorPair pair(shaft);
+  expect_same(pair.request(request_time(1 * kMs), control(false, true, 100)), "eim on");
+  for (const SimTimeNs t : {8300 * kMs, 8500 * kMs, 8990 * kMs, 9200 * kMs}) {
+    const Answers answers = pair.request(request_time(t), control(false, true, 100));
+    ASSERT_TRUE(answers.emulation.has_value());
+    expect_same(answers, "at " + std::to_string(t / kMs) + " ms");
+  }
+}
+
 TEST(MotorFirmware, MalformedFramesGetNoAnswerFromEither) {
   const Shaft shaft(1000.5);
   MotorPair pair(shaft);
