@@ -7,7 +7,7 @@ SOAK_SEED ?= 1
 SWEEP_SEEDS ?= 1-20
 CMAKE_FLAGS ?= -DMARSOKHOD_WERROR=ON
 
-.PHONY: all deps configure build test bench fuzz run web soak sweep params-doc clean
+.PHONY: all deps configure build test bench fuzz run web soak sweep params-doc firmware clean
 
 all: build
 
@@ -23,6 +23,11 @@ build: configure
 test: build web
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
 	@if [ -f web/package.json ]; then cd web && MARSOKHOD_BIN=$(abspath $(BUILD_DIR))/src/app/marsokhod npm test; fi
+
+# The nine controllers' firmware (firmware/, docs/firmware.md): BUILD_DIR/firmware/mu0..mu8.elf
+# and .hex with gcc-avr, and each image's flash and RAM use. `make build` builds them too.
+firmware: deps
+	$(MAKE) --no-print-directory -C firmware OUT=$(abspath $(BUILD_DIR))/firmware
 
 bench: build
 	@bash scripts/run-benchmarks.sh $(BUILD_DIR)

@@ -13,6 +13,7 @@ packages=(
   python3-can can-utils iproute2
   liburdfdom-tools
   chromium
+  gcc-avr avr-libc binutils-avr libsimavr-dev
 )
 
 missing=()

@@ -146,6 +146,10 @@ void add_offline_commands(CLI::App& cli, Commands& c) {
                   "a sweep over the seeds A-B (each seed a different rover unit)");
   cmd->add_option("--jobs", scenario.jobs, "runs at once in a sweep (default: one per core)")
       ->check(CLI::Range(1, 256));
+  cmd->add_option("--firmware", scenario.firmware,
+                  "run the controllers' real firmware (DIR/mu0..mu8.elf, make firmware) in simavr "
+                  "instead of the emulation")
+      ->check(CLI::ExistingDirectory);
 }
 
 void add_soak_and_replay(CLI::App& cli, Commands& c) {
@@ -187,6 +191,10 @@ void add_live_commands(CLI::App& cli, Commands& c) {
   sim_cmd->add_option("--seed", sim.seed, "the simulator's seed")->check(kSeed);
   sim_cmd->add_option("--duration", sim.duration_s, "stop after this many seconds")
       ->check(CLI::NonNegativeNumber);
+  sim_cmd->add_option("--firmware", sim.firmware,
+                      "run the controllers' real firmware (DIR/mu0..mu8.elf, make firmware) in "
+                      "simavr instead of the emulation")
+      ->check(CLI::ExistingDirectory);
 
   runner::DriveArgs& drive = c.drive;
   CLI::App* drive_cmd = c.drive_cmd =

@@ -107,6 +107,7 @@ int run_sweep_command(const ScenarioArgs& args, const config::LoadedConfig& conf
     }
   }
   plan.program = args.program;
+  if (!args.firmware.empty()) plan.firmware_dir = std::filesystem::absolute(args.firmware).string();
   plan.common_args = {"--config", std::filesystem::absolute(config.config_file).string()};
   if (!config.calibration_file.empty()) {
     plan.common_args.insert(plan.common_args.end(),
@@ -188,6 +189,7 @@ int run_scenario_command(const ScenarioArgs& args, const config::LoadedConfig& c
   options.calibration_file = config.calibration_file;
   options.rover_params = &config.nominal;
   options.plots = !args.no_plots;
+  options.firmware_dir = args.firmware;
   runner::ScenarioResult result;
   try {
     result = runner::run_scenario(scenario, params, options);

@@ -20,6 +20,7 @@ struct ScenarioArgs {
   bool json = false;
   bool list = false;
   bool no_plots = false;
+  std::string firmware;  // a folder of mu0..mu8.elf: the real firmware in simavr
   // A sweep: --all and/or --seeds A-B, run as child processes of `program`, `jobs` at a time.
   bool all = false;
   std::string seeds;

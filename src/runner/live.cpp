@@ -40,13 +40,14 @@ void print_status_line(double t, const driver::DriverStatus& s, std::ostream& ou
 }
 
 sim::SimOptions sim_options(const std::string& scenario, std::uint64_t seed,
-                            std::optional<Scenario>& loaded) {
+                            std::optional<Scenario>& loaded, const std::string& firmware = {}) {
   sim::SimOptions options;
   if (!scenario.empty()) {
     loaded = load_scenario(scenario);
     options = loaded->sim;
   }
   options.seed = seed;
+  options.firmware_dir = firmware;
   return options;
 }
 
@@ -320,7 +321,8 @@ int run_sim(const SimArgs& args, const Params& params, std::ostream& out, std::o
   std::vector<protocol::CanFrame> inbox;
   std::unique_ptr<bus::SocketcandServer> server;
   try {
-    rover = std::make_unique<sim::SimulatedRover>(params, sim_options(args.scenario, args.seed, scenario));
+    rover = std::make_unique<sim::SimulatedRover>(
+        params, sim_options(args.scenario, args.seed, scenario, args.firmware));
     const link::ListenAddress listen = link::parse_listen_address(args.listen);
     bus::SocketcandServer::Config config;
     config.address = listen.address;

@@ -34,6 +34,7 @@ struct SimArgs {
   std::string scenario;
   std::uint64_t seed = 1;
   double duration_s = 0.0;
+  std::string firmware;  // a folder of mu0..mu8.elf: the real firmware in simavr (sim/avr)
 };
 
 struct DriveArgs {

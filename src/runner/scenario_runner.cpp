@@ -85,6 +85,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   result.seed = options.seed.value_or(scenario.seed);
   sim::SimOptions sim = scenario.sim;
   sim.seed = result.seed;
+  if (!options.firmware_dir.empty()) sim.firmware_dir = options.firmware_dir;
   Session session(options.rover_params != nullptr ? *options.rover_params : params, params, sim);
   if (scenario.state_of_charge) session.rover().set_state_of_charge(*scenario.state_of_charge);
   session.set_runtime(link::runtime_settings_from_json(scenario.runtime, session.runtime()));

@@ -49,6 +49,7 @@ struct RunOptions {
   std::filesystem::path calibration_file;
   const Params* rover_params = nullptr;
   bool plots = true;
+  std::string firmware_dir;  // the controllers' real firmware in simavr, or empty: the emulation
 };
 
 class Session;

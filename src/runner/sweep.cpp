@@ -280,6 +280,9 @@ std::vector<SweepRun> run_sweep(const SweepPlan& plan,
       if (!plan.out.empty()) {
         argv.insert(argv.end(), {"--out", plan.out + "/" + name + "-seed-" + std::to_string(seed)});
       }
+      if (!plan.firmware_dir.empty()) {
+        argv.insert(argv.end(), {"--firmware", plan.firmware_dir});
+      }
       jobs.push_back(std::move(argv));
       what.emplace_back(name, seed);
       if (seed == seeds.last) break;

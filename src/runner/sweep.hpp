@@ -124,6 +124,7 @@ struct SweepPlan {
   std::optional<SeedRange> seeds;
   std::size_t jobs = 1;
   std::string out;  // a folder for every run's recording, or empty
+  std::string firmware_dir;  // passed on as --firmware: the real firmware in simavr
 };
 
 struct SweepProgress {

@@ -13,9 +13,8 @@
 namespace marsokhod::sim {
 namespace {
 
-void BM_SimulatedRoverSecond(benchmark::State& state) {
+void run_rover_seconds(benchmark::State& state, const SimOptions& options) {
   const Params params;
-  SimOptions options;
   SimulatedRover rover(params, options);
   for (std::uint8_t i = 0; i < 8; ++i) {
     rover.send(protocol::encode(protocol::ConfigurationRequest{i, 511, 0, 0}), 0.0);
@@ -34,6 +33,8 @@ void BM_SimulatedRoverSecond(benchmark::State& state) {
   state.counters["real_time_factor"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
+
+void BM_SimulatedRoverSecond(benchmark::State& state) { run_rover_seconds(state, SimOptions{}); }
 BENCHMARK(BM_SimulatedRoverSecond)->Unit(benchmark::kMillisecond);
 
 void BM_BareMjStepSecond(benchmark::State& state) {
@@ -47,6 +48,14 @@ void BM_BareMjStepSecond(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_BareMjStepSecond)->Unit(benchmark::kMillisecond);
+
+// The same with the nine controllers' real firmware in simavr (sim/avr, docs/firmware.md).
+void BM_SimulatedRoverSecondOnFirmware(benchmark::State& state) {
+  SimOptions options;
+  options.firmware_dir = MARSOKHOD_FIRMWARE_DIR;
+  run_rover_seconds(state, options);
+}
+BENCHMARK(BM_SimulatedRoverSecondOnFirmware)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace marsokhod::sim

@@ -72,9 +72,9 @@ CanFrame encode(const ControlRequest& message) {
   check_motor_node(name, message.node);
   check_range(name, "pwm", message.pwm, 0, kMaxIcr, "pwm ≤ icr ≤ 2047");
   CanFrame frame = frame_for(message.node, kControlRequestType);
-  frame.data[0] = static_cast<std::uint8_t>((message.drv ? wire::kDrvBit : 0U) |
+  frame.data[MK_CONTROL_REQUEST_FLAGS] = static_cast<std::uint8_t>((message.drv ? wire::kDrvBit : 0U) |
                                             (message.eim ? wire::kEimBit : 0U));
-  write_u16(frame.data, 1, message.pwm);
+  write_u16(frame.data, MK_CONTROL_REQUEST_PWM, message.pwm);
   return frame;
 }
 
@@ -84,12 +84,12 @@ CanFrame encode(const ControlResponse& message) {
   check_motor_node(name, message.node);
   check_range(name, "vel", message.vel, 0, kMaxVel, "15 bits");
   CanFrame frame = frame_for(message.node, kControlResponseType);
-  write_u16(frame.data, 0, message.tim);
-  write_u16(frame.data, 2, message.enc);
-  write_u16(frame.data, 4, message.stp);
-  frame.data[6] = static_cast<std::uint8_t>((message.dir ? wire::kDirBit : 0U) |
+  write_u16(frame.data, MK_CONTROL_RESPONSE_TIM, message.tim);
+  write_u16(frame.data, MK_CONTROL_RESPONSE_ENC, message.enc);
+  write_u16(frame.data, MK_CONTROL_RESPONSE_STP, message.stp);
+  frame.data[MK_CONTROL_RESPONSE_DIR_VEL] = static_cast<std::uint8_t>((message.dir ? wire::kDirBit : 0U) |
                                             ((message.vel >> 8) & wire::kVelHighBits));
-  frame.data[7] = static_cast<std::uint8_t>(message.vel & 0xFF);
+  frame.data[MK_CONTROL_RESPONSE_VEL_LOW] = static_cast<std::uint8_t>(message.vel & 0xFF);
   return frame;
 }
 
@@ -100,9 +100,9 @@ CanFrame encode(const ConfigurationRequest& message) {
   check_range(name, "icr", message.icr, kMinIcr, kMaxIcr);
   check_range(name, "pwm", message.pwm, 0, message.icr, "pwm ≤ icr of the same request");
   CanFrame frame = frame_for(message.node, kConfigurationRequestType);
-  write_u16(frame.data, 0, message.icr);
-  write_u16(frame.data, 2, message.pwm);
-  frame.data[4] = message.con;
+  write_u16(frame.data, MK_CONFIGURATION_REQUEST_ICR, message.icr);
+  write_u16(frame.data, MK_CONFIGURATION_REQUEST_PWM, message.pwm);
+  frame.data[MK_CONFIGURATION_REQUEST_CON] = message.con;
   return frame;
 }
 
@@ -110,7 +110,7 @@ CanFrame encode(const ConfigurationRequest& message) {
 CanFrame encode(const ConfigurationResponse& message) {
   check_motor_node("configuration response", message.node);
   CanFrame frame = frame_for(message.node, kConfigurationResponseType);
-  write_u16(frame.data, 0, message.tim);
+  write_u16(frame.data, MK_CONFIGURATION_RESPONSE_TIM, message.tim);
   return frame;
 }
 
@@ -148,9 +148,9 @@ CanFrame encode(const MeasurementResponse& message) {
   for (std::size_t i = 0; i < readings.size(); ++i) {
     frame.data[i] = static_cast<std::uint8_t>(readings[i] >> 2);
   }
-  frame.data[6] = static_cast<std::uint8_t>(((readings[0] & 3U) << 6) | ((readings[1] & 3U) << 4) |
+  frame.data[MK_MEASUREMENT_LOW_BITS_1] = static_cast<std::uint8_t>(((readings[0] & 3U) << 6) | ((readings[1] & 3U) << 4) |
                                             ((readings[2] & 3U) << 2) | (readings[3] & 3U));
-  frame.data[7] = static_cast<std::uint8_t>(((readings[4] & 3U) << 6) | ((readings[5] & 3U) << 4) |
+  frame.data[MK_MEASUREMENT_LOW_BITS_2] = static_cast<std::uint8_t>(((readings[4] & 3U) << 6) | ((readings[5] & 3U) << 4) |
                                             channel);
   return frame;
 }
@@ -158,7 +158,7 @@ CanFrame encode(const MeasurementResponse& message) {
 // 0x82: dog.
 CanFrame encode(const DeadManRequest& message) {
   CanFrame frame = frame_for(kSensorController, kDeadManRequestType);
-  frame.data[0] = message.dog;
+  frame.data[MK_DEAD_MAN_REQUEST_DOG] = message.dog;
   return frame;
 }
 

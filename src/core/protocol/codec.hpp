@@ -23,28 +23,29 @@
 
 #include "core/protocol/can_frame.hpp"
 #include "core/protocol/messages.hpp"
+#include "core/protocol/wire_layout.h"
 
 namespace marsokhod::protocol {
 
-inline constexpr std::uint8_t kMotorControllerCount = 8;  // µ0–µ7
-inline constexpr std::uint8_t kSensorController = 8;      // µ8
-inline constexpr std::uint32_t kMaxCanId = 0x7FF;         // 11-bit standard identifier
-inline constexpr std::uint16_t kMinIcr = 255;             // chapter 3.2 input table
-inline constexpr std::uint16_t kMaxIcr = 2047;
-inline constexpr std::uint16_t kMaxVel = 0x7FFF;  // 15 bit
-inline constexpr std::uint16_t kMaxAdc = 1023;    // 10-bit ADC of µ8
-inline constexpr int kMinLcdChar = 32;            // chapter 3.3: lcdⁱ in 32..127
-inline constexpr int kMaxLcdChar = 127;
+inline constexpr std::uint8_t kMotorControllerCount = MK_MOTOR_CONTROLLER_COUNT;// µ0–µ7
+inline constexpr std::uint8_t kSensorController = MK_SENSOR_NODE;// µ8
+inline constexpr std::uint32_t kMaxCanId = MK_MAX_CAN_ID;// 11-bit standard identifier
+inline constexpr std::uint16_t kMinIcr = MK_ICR_MIN;// chapter 3.2 input table
+inline constexpr std::uint16_t kMaxIcr = MK_ICR_MAX;
+inline constexpr std::uint16_t kMaxVel = MK_VEL_MAX;// 15 bit
+inline constexpr std::uint16_t kMaxAdc = MK_ADC_MAX;// 10-bit ADC of µ8
+inline constexpr int kMinLcdChar = MK_LCD_CHAR_MIN;// chapter 3.3: lcdⁱ in 32..127
+inline constexpr int kMaxLcdChar = MK_LCD_CHAR_MAX;
 
 // The type nibble T of idt. µ8's types share the numbers 0..3 with the motor controllers'.
-inline constexpr std::uint8_t kControlRequestType = 0;
-inline constexpr std::uint8_t kControlResponseType = 1;
-inline constexpr std::uint8_t kConfigurationRequestType = 2;
-inline constexpr std::uint8_t kConfigurationResponseType = 3;
-inline constexpr std::uint8_t kMeasurementRequestType = 0;
-inline constexpr std::uint8_t kMeasurementResponseType = 1;
-inline constexpr std::uint8_t kDeadManRequestType = 2;
-inline constexpr std::uint8_t kDeadManResponseType = 3;
+inline constexpr std::uint8_t kControlRequestType = MK_TYPE_CONTROL_REQUEST;
+inline constexpr std::uint8_t kControlResponseType = MK_TYPE_CONTROL_RESPONSE;
+inline constexpr std::uint8_t kConfigurationRequestType = MK_TYPE_CONFIGURATION_REQUEST;
+inline constexpr std::uint8_t kConfigurationResponseType = MK_TYPE_CONFIGURATION_RESPONSE;
+inline constexpr std::uint8_t kMeasurementRequestType = MK_TYPE_MEASUREMENT_REQUEST;
+inline constexpr std::uint8_t kMeasurementResponseType = MK_TYPE_MEASUREMENT_RESPONSE;
+inline constexpr std::uint8_t kDeadManRequestType = MK_TYPE_DEAD_MAN_REQUEST;
+inline constexpr std::uint8_t kDeadManResponseType = MK_TYPE_DEAD_MAN_RESPONSE;
 
 // CAN ID = idt << 3 with idt = (node << 4) | type: µ3's control request → 0x180, µ8's
 // measurement request (idt 0x80) → 0x400. Both arguments must fit a nibble.

@@ -48,14 +48,14 @@ DecodeResult reject(DecodeErrorCode code, const CanFrame& frame, const std::stri
 
 DecodeResult decode_control_request(const CanFrame& frame, std::uint8_t node,
                                     const DecodeContext& context) {
-  const std::uint8_t flags = frame.data[0];
+  const std::uint8_t flags = frame.data[MK_CONTROL_REQUEST_FLAGS];
   if ((flags & wire::kControlReservedBits) != 0) {
     return reject(DecodeErrorCode::kReservedBitsSet, frame,
                   "reserved bits 7..2 of byte 0 are " + hex(flags & wire::kControlReservedBits, 2) +
                       ", expected 0 in a " + kind(node, kControlRequestType) +
                       ", whose byte 0 holds only drv (bit 0) and eim (bit 1)");
   }
-  const std::uint16_t pwm = read_u16(frame.data, 1);
+  const std::uint16_t pwm = read_u16(frame.data, MK_CONTROL_REQUEST_PWM);
   const std::uint16_t icr = context.icr[node];
   if (pwm > icr) {
     return reject(DecodeErrorCode::kPwmAboveIcr, frame,
@@ -69,19 +69,19 @@ DecodeResult decode_control_request(const CanFrame& frame, std::uint8_t node,
 }
 
 DecodeResult decode_control_response(const CanFrame& frame, std::uint8_t node) {
-  const auto vel = static_cast<std::uint16_t>(((frame.data[6] & wire::kVelHighBits) << 8) |
-                                              frame.data[7]);
+  const auto vel = static_cast<std::uint16_t>(((frame.data[MK_CONTROL_RESPONSE_DIR_VEL] & wire::kVelHighBits) << 8) |
+                                              frame.data[MK_CONTROL_RESPONSE_VEL_LOW]);
   return Message{ControlResponse{.node = node,
-                                 .tim = read_u16(frame.data, 0),
-                                 .enc = read_u16(frame.data, 2),
-                                 .stp = read_u16(frame.data, 4),
-                                 .dir = (frame.data[6] & wire::kDirBit) != 0,
+                                 .tim = read_u16(frame.data, MK_CONTROL_RESPONSE_TIM),
+                                 .enc = read_u16(frame.data, MK_CONTROL_RESPONSE_ENC),
+                                 .stp = read_u16(frame.data, MK_CONTROL_RESPONSE_STP),
+                                 .dir = (frame.data[MK_CONTROL_RESPONSE_DIR_VEL] & wire::kDirBit) != 0,
                                  .vel = vel}};
 }
 
 DecodeResult decode_configuration_request(const CanFrame& frame, std::uint8_t node) {
-  const std::uint16_t icr = read_u16(frame.data, 0);
-  const std::uint16_t pwm = read_u16(frame.data, 2);
+  const std::uint16_t icr = read_u16(frame.data, MK_CONFIGURATION_REQUEST_ICR);
+  const std::uint16_t pwm = read_u16(frame.data, MK_CONFIGURATION_REQUEST_PWM);
   if (icr < kMinIcr || icr > kMaxIcr) {
     return reject(DecodeErrorCode::kIcrOutOfRange, frame,
                   "icr " + number(icr) + " is outside " + number(kMinIcr) + ".." +
@@ -93,7 +93,7 @@ DecodeResult decode_configuration_request(const CanFrame& frame, std::uint8_t no
                       " of the same request, expected pwm ≤ icr (|d| ≤ 1) in a " +
                       kind(node, kConfigurationRequestType));
   }
-  return Message{ConfigurationRequest{.node = node, .icr = icr, .pwm = pwm, .con = frame.data[4]}};
+  return Message{ConfigurationRequest{.node = node, .icr = icr, .pwm = pwm, .con = frame.data[MK_CONFIGURATION_REQUEST_CON]}};
 }
 
 DecodeResult decode_measurement_request(const CanFrame& frame) {
@@ -121,8 +121,8 @@ std::uint16_t reading(const CanFrame& frame, std::size_t high_byte, std::uint8_t
 }
 
 DecodeResult decode_measurement_response(const CanFrame& frame) {
-  const std::uint8_t b6 = frame.data[6];
-  const std::uint8_t b7 = frame.data[7];
+  const std::uint8_t b6 = frame.data[MK_MEASUREMENT_LOW_BITS_1];
+  const std::uint8_t b7 = frame.data[MK_MEASUREMENT_LOW_BITS_2];
   if ((b7 & wire::kStatusReservedBits) != 0) {
     return reject(DecodeErrorCode::kReservedBitsSet, frame,
                   "reserved bits 3..1 of b7 are " + hex(b7 & wire::kStatusReservedBits, 2) +
@@ -203,10 +203,10 @@ DecodeResult decode(const CanFrame& frame, const DecodeContext& context) {
     case 0: return decode_control_request(frame, node, context);
     case 1: return decode_control_response(frame, node);
     case 2: return decode_configuration_request(frame, node);
-    case 3: return Message{ConfigurationResponse{.node = node, .tim = read_u16(frame.data, 0)}};
+    case 3: return Message{ConfigurationResponse{.node = node, .tim = read_u16(frame.data, MK_CONFIGURATION_RESPONSE_TIM)}};
     case 4: return decode_measurement_request(frame);
     case 5: return decode_measurement_response(frame);
-    case 6: return Message{DeadManRequest{.dog = frame.data[0]}};
+    case 6: return Message{DeadManRequest{.dog = frame.data[MK_DEAD_MAN_REQUEST_DOG]}};
     default: return Message{DeadManResponse{}};
   }
 }

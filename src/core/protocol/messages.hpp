@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <variant>
 
+#include "core/protocol/wire_layout.h"
+
 namespace marsokhod::protocol {
 
 // 0xi0, 3 bytes, ReadyBoard → µi (i = 0..7). Also sent by µ8's dead man's switch with pwm = 0.
@@ -70,7 +72,7 @@ struct MeasurementResponse {
 
 // 0x82, 1 byte: dog (0 disables; otherwise stop after 0.2621·dog s without a 0x80).
 // µ8's unit of dog: Timer 1 at 16 MHz/64 overflows every 65536·64/16 MHz = 0.262144 s.
-inline constexpr std::int64_t kDeadManTickUs = 262144;
+inline constexpr std::int64_t kDeadManTickUs = MK_DEAD_MAN_TICK_US;
 struct DeadManRequest {
   std::uint8_t dog = 0;
   friend bool operator==(const DeadManRequest&, const DeadManRequest&) = default;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "sim/electrics/seeded_random.hpp"
 
@@ -36,6 +37,13 @@ RoverFirmware::RoverFirmware(const Params& params, const SimTruth& truth, std::u
       target_angle_rad_(params.motors.initial_position_rad),
       target_sensors_(initial_sensors) {}
 
+RoverFirmware::RoverFirmware(const Params& params, const SimTruth& truth, std::uint64_t seed,
+                             const SensorTruthSample& initial_sensors,
+                             std::unique_ptr<ControllerHardware> hardware)
+    : RoverFirmware(params, truth, seed, initial_sensors) {
+  hardware_ = std::move(hardware);
+}
+
 void RoverFirmware::send(const protocol::CanFrame& frame, SimTimeNs ready_ns) {
   bus_.enqueue(frame, ready_ns, kDriverOrigin);
 }
@@ -49,10 +57,25 @@ void RoverFirmware::move_controllers_to(SimTimeNs time_ns) {
     }
     time_ns_ = time_ns;
   }
+  if (hardware_) {
+    hardware_->advance(time_ns_, angle_rad_, target_sensors_);
+    return;
+  }
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     motors_[i].advance(time_ns_, angle_rad_[i]);
   }
   sensor_.advance(time_ns_, target_sensors_);
+}
+
+bool RoverFirmware::enqueue_hardware_transmissions() {
+  bool enqueued = false;
+  for (const HardwareTransmission& sent : hardware_->take_transmitted()) {
+    if (!silent_[sent.controller]) {
+      bus_.enqueue(sent.frame, sent.ready_ns, static_cast<int>(sent.controller));
+      enqueued = true;
+    }
+  }
+  return enqueued;
 }
 
 bool RoverFirmware::fire_dead_man_if_due(SimTimeNs until_ns) {
@@ -83,6 +106,10 @@ void RoverFirmware::answer(std::size_t controller,
 }
 
 void RoverFirmware::deliver(const BusDelivery& delivery) {
+  if (hardware_) {
+    hardware_->deliver(delivery.frame);
+    return;
+  }
   const std::uint32_t node = delivery.frame.id >> 7;  // idt = id >> 3, node = idt >> 4
   if (node < kMotorCount) {
     answer(node, motors_[node].receive(delivery.frame), delivery.delivery_ns);
@@ -104,10 +131,17 @@ std::vector<BusDelivery> RoverFirmware::advance_to(SimTimeNs time_ns,
   target_sensors_ = sensors;
   std::vector<BusDelivery> received;
   for (;;) {
-    if (fire_dead_man_if_due(time_ns)) {
+    if (!hardware_ && fire_dead_man_if_due(time_ns)) {
       continue;
     }
     const std::optional<BusDelivery> next = bus_.peek();
+    if (hardware_) {
+      // Run the controllers up to the next arbitration: what they send by then takes part in it.
+      move_controllers_to(std::max(time_ns_, next ? std::min(next->start_ns, time_ns) : time_ns));
+      if (enqueue_hardware_transmissions()) {
+        continue;
+      }
+    }
     if (!next || next->delivery_ns > time_ns) {
       break;
     }
@@ -126,6 +160,9 @@ std::vector<BusDelivery> RoverFirmware::advance_to(SimTimeNs time_ns,
 }
 
 MotorVector RoverFirmware::duty() const {
+  if (hardware_) {
+    return hardware_->duty();
+  }
   MotorVector duty{};
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     duty[i] = motors_[i].duty();
@@ -134,6 +171,9 @@ MotorVector RoverFirmware::duty() const {
 }
 
 IcrVector RoverFirmware::icr() const {
+  if (hardware_) {
+    return hardware_->icr();
+  }
   IcrVector icr{};
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     icr[i] = motors_[i].registers().icr;
@@ -151,6 +191,9 @@ void RoverFirmware::set_frame_loss_probability(double probability) {
 
 void RoverFirmware::set_lost_pulse_fraction(std::size_t motor, double fraction) {
   motors_.at(motor).set_lost_pulse_fraction(fraction);
+  if (hardware_) {
+    hardware_->set_lost_pulse_fraction(motor, fraction);
+  }
 }
 
 }  // namespace marsokhod::sim

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/params.hpp"
@@ -24,6 +25,7 @@
 #include "sim/electrics/rover_electrics.hpp"
 #include "sim/electrics/sim_truth.hpp"
 #include "sim/firmware/can_bus_model.hpp"
+#include "sim/firmware/controller_hardware.hpp"
 #include "sim/firmware/motor_controller.hpp"
 #include "sim/firmware/sensor_controller.hpp"
 #include "sim/firmware/sim_time.hpp"
@@ -38,6 +40,12 @@ class RoverFirmware {
   // loss draws, each controller's lost pulses and µ8's noise, each from its own stream.
   RoverFirmware(const Params& params, const SimTruth& truth, std::uint64_t seed,
                 const SensorTruthSample& initial_sensors = {});
+  // The same bus with the controllers on other hardware (the real firmware, controller_hardware.hpp)
+  // instead of the emulation: frames go to it, its transmissions go on the bus at their times,
+  // duty and icr come from it; silence and frame loss stay the bus's faults here.
+  RoverFirmware(const Params& params, const SimTruth& truth, std::uint64_t seed,
+                const SensorTruthSample& initial_sensors,
+                std::unique_ptr<ControllerHardware> hardware);
 
   // A frame from the driver, on the bus from ready_ns on. Throws std::invalid_argument for a
   // frame no CAN bus carries.
@@ -66,6 +74,9 @@ class RoverFirmware {
   void answer(std::size_t controller, const std::optional<protocol::CanFrame>& response,
               SimTimeNs received_ns);
   bool fire_dead_man_if_due(SimTimeNs until_ns);
+  bool enqueue_hardware_transmissions();
+
+  std::unique_ptr<ControllerHardware> hardware_;  // null: the emulation answers
 
   std::vector<MotorController> motors_;
   SensorController sensor_;

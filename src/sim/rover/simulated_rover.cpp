@@ -1,8 +1,11 @@
 #include "sim/rover/simulated_rover.hpp"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
+
+#include "sim/avr/rover_hardware.hpp"
 
 namespace marsokhod::sim {
 namespace {
@@ -45,6 +48,17 @@ Params with_shaft_angles(Params params, const MotorVector& shaft_angle_rad) {
   return params;
 }
 
+RoverFirmware make_firmware(const Params& params, const SimTruth& truth, const SimOptions& options,
+                            const SensorTruthSample& initial_sensors) {
+  if (options.firmware_dir.empty()) {
+    return RoverFirmware(params, truth, options.seed, initial_sensors);
+  }
+  return RoverFirmware(params, truth, options.seed, initial_sensors,
+                       std::make_unique<avr::RoverHardware>(options.firmware_dir, params,
+                                                            truth.sensors, options.seed,
+                                                            initial_sensors));
+}
+
 }  // namespace
 
 SimulatedRover::SimulatedRover(const Params& nominal, const SimOptions& options)
@@ -53,10 +67,10 @@ SimulatedRover::SimulatedRover(const Params& nominal, const SimOptions& options)
       physics_(with_true_backlash(nominal, truth_), options.terrain, options.physics_timestep_s),
       firmware_params_(with_shaft_angles(nominal, physics_.shaft_angle_rad())),
       electrics_(truth_),
-      firmware_(firmware_params_, truth_, options.seed,
-                sample_of(physics_.imu(), electrics_.output().supply_v > 0.0
-                                              ? electrics_.output().supply_v
-                                              : nominal.motors.nominal_supply_v)) {}
+      firmware_(make_firmware(firmware_params_, truth_, options,
+                              sample_of(physics_.imu(), electrics_.output().supply_v > 0.0
+                                                            ? electrics_.output().supply_v
+                                                            : nominal.motors.nominal_supply_v))) {}
 
 double SimulatedRover::time_s() const { return physics_.time_s(); }
 

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/params.hpp"
@@ -32,6 +33,9 @@ struct SimOptions {
   // A unit given explicitly (tests): the same rover under different driver configurations, e.g.
   // nominal and calibrated Params. Overrides seed's draw and nominal_unit; supply still applies.
   std::optional<SimTruth> unit;
+  // Empty: the emulated controllers (sim/firmware). Else a folder with the real firmware images
+  // mu0.elf … mu8.elf (`make firmware`), run in simavr (sim/avr/rover_hardware.hpp).
+  std::string firmware_dir;
 };
 
 // A frame the rover's controllers put on the bus, and when the driver side has it.
