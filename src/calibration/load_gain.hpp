@@ -6,8 +6,8 @@
 // the whole functions, which rise toward small duty at high frequency; Procedure 4.14 repeated the
 // sweep with a lighter weight (peak ±2.98 N·m) at U = 24, 22, 20 and 16 V and found "the defect in
 // velocity is not susceptible to the supply voltage". Here the wheel is held at a few duty levels
-// in turn (the wheel must turn over at each to show both signs of τ), at each of the four supply
-// voltages, and at every level
+// in turn (the wheel must turn over at each to show both signs of τ), at each supply voltage
+// (24, 22 and 20 V: 16 V is below the onboard computer's brown-out), and at every level
 //   l = w − ν = c + B⁺·τ⁺ + B⁻·τ⁻,   τ = peak·sin(p̄ + phase),
 // τ⁺ = τ where τ·d ≥ 0, τ⁻ = τ where τ·d < 0; c takes up what ν misses of the wheel's no-load speed
 // at that level. The phase (where the weight sits) is one for all levels and voltages: the first

@@ -25,7 +25,7 @@ std::unique_ptr<Procedure> motor_curve_procedure();    // W_icr(d) by a slow pwm
 std::unique_ptr<Procedure> motor_scale_procedure();    // ζ_i at d = 0.7 with the warm-up
 std::unique_ptr<Procedure> response_procedure();       // δ of (4.4) from a chirp
 std::unique_ptr<Procedure> load_procedure();           // B⁺, B⁻ from a weight on a wheel
-std::unique_ptr<Procedure> load_gain_procedure();      // B±_icr(d) at four supply voltages
+std::unique_ptr<Procedure> load_gain_procedure();      // B±_icr(d) at three supply voltages
 std::unique_ptr<Procedure> spin_procedure();           // F̂(c) and the line F(c)
 std::unique_ptr<Procedure> voltage_drop_procedure();   // ξ, Ξ of (4.5) from a recording
 

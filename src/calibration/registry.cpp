@@ -25,7 +25,7 @@ const std::vector<ProcedureInfo>& procedures() {
       {"load", "Procedure 4.13", "B+ and B- of (4.6) from a weight strapped to a wheel", true,
        false, load_procedure},
       {"load-gain", "Procedure 4.14, Procedure 4.13",
-       "B+_icr(d), B-_icr(d) of (4.6) at five duties and four supply voltages", true, false,
+       "B+_icr(d), B-_icr(d) of (4.6) at five duties and three supply voltages", true, false,
        load_gain_procedure},
       {"spin", "Procedure 5.1", "F^(c) at several axle distances and the line F(c)", true, true,
        spin_procedure},
