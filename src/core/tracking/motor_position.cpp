@@ -18,15 +18,25 @@ PositionIncrement position_increment(const EncoderReading& previous,
                                      const EncoderReading& current) {
   PositionIncrement increment;
   const std::int32_t sign = previous.dir ? -1 : 1;
-  if (current.dir == previous.dir) {
-    increment.counts = sign * signed_difference(current.enc, previous.enc);
-    return increment;
-  }
+  const std::int32_t whole = signed_difference(current.enc, previous.enc);
   const std::int32_t before_reversal = signed_difference(current.stp, previous.enc);
   const std::int32_t after_reversal = signed_difference(current.enc, current.stp);
   // stp lies on the arc previous.enc → current.enc exactly when the two parts add up to the
   // whole arc; otherwise their sum is the arc plus 65536.
-  if (before_reversal + after_reversal != signed_difference(current.enc, previous.enc)) {
+  const bool stp_on_arc = before_reversal + after_reversal == whole;
+  if (current.dir == previous.dir) {
+    if (current.stp != previous.stp && stp_on_arc) {
+      // stp moved while dir stayed: an even number of direction changes since the last reading,
+      // the last at stp. The pulses before it went both ways in an unknown split: net zero, the
+      // midpoint; the pulses after it went in the direction dir reads.
+      increment.hidden_reversals = true;
+      increment.counts = sign * after_reversal;
+      return increment;
+    }
+    increment.counts = sign * whole;
+    return increment;
+  }
+  if (!stp_on_arc) {
     increment.reversal_point_unknown = true;
     return increment;
   }
@@ -53,6 +63,9 @@ double PositionTracker::update(const EncoderReading& reading) {
     accumulated_counts_ += increment.counts;
     if (increment.reversal_point_unknown) {
       ++unknown_reversal_count_;
+    }
+    if (increment.hidden_reversals) {
+      ++hidden_reversal_count_;
     }
   }
   started_ = true;

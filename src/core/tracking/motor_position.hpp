@@ -12,10 +12,16 @@
 // (205 deg; the text's "102.6 deg" contradicts its own conversion).
 //
 // Limits, by construction of the registers:
-// - Two direction changes inside one cycle cannot be seen: dir reads as unchanged, stp points at
-//   the second change, and the pulses between the two changes count in the old direction (an
-//   error of twice their number). The slew-limited duty cycles of chapter 3.2 make a double
-//   reversal within one 15.6 ms cycle unlikely; nothing in the registers can reveal it.
+// - Two direction changes inside one cycle leave dir as it was; the printed formula's first case
+//   counts the pulses between the changes in the old direction, an error of twice their number.
+//   The registers do show that it happened: stp moved (it points at the second change) while dir
+//   stayed. They do not show how the pulses before that change split into forward and back, so
+//   those pulses count as net zero, the midpoint of [−a, a] (a = (stp^k − enc^(k−1)) mod 65536),
+//   and the pulses after it in the direction dir reads:
+//     dir unchanged, stp^k ≠ stp^(k−1), stp^k on the arc: Δ = (enc^k − stp^k) mod 65536.
+//   The error is then at most a instead of up to 2a. It matters where a joint sticks and slips:
+//   its coupling springs the shaft back a few pulses and forward again inside one 15.6 ms cycle
+//   every stroke (RELIABILITY.md, rear-wheel-walking-slope-slant-off).
 // - More than 65535 pulses (3.58 rad) between two readings wrap unseen; at the no-load speed
 //   w = 2.827 rad/s that takes 1.27 s of missed responses.
 // - If dir changed but stp does not lie on the arc enc^(k−1) → enc^k (stp not refreshed, e.g.
@@ -39,6 +45,7 @@ struct EncoderReading {
 struct PositionIncrement {
   std::int32_t counts = 0;
   bool reversal_point_unknown = false;  // dir changed but stp was not on the arc; counts = 0
+  bool hidden_reversals = false;  // dir unchanged but stp moved: the pulses before stp count 0
 };
 
 // Chapter 3.2 as read in docs/design.md, including the sign (−1)^dir^(k−1).
@@ -63,6 +70,8 @@ class PositionTracker {
   std::int64_t accumulated_counts() const { return accumulated_counts_; }
   // How many direction changes arrived with an stp off the arc (counted as Δ = 0).
   std::uint64_t unknown_reversal_count() const { return unknown_reversal_count_; }
+  // How many readings showed stp moved while dir stayed (two changes inside one cycle).
+  std::uint64_t hidden_reversal_count() const { return hidden_reversal_count_; }
   // The registers of the last reading (meaningful once started).
   const EncoderReading& last_reading() const { return previous_; }
 
@@ -72,6 +81,7 @@ class PositionTracker {
   double position_rad_;
   std::int64_t accumulated_counts_ = 0;
   std::uint64_t unknown_reversal_count_ = 0;
+  std::uint64_t hidden_reversal_count_ = 0;
   EncoderReading previous_{};
   bool started_ = false;
 };

@@ -68,16 +68,53 @@ TEST(MotorPosition, ReversalAtEitherEndOfTheCycle) {
   EXPECT_EQ(position_increment({100, 0, false}, {125, 125, true}).counts, 25);
 }
 
-TEST(MotorPosition, TwoReversalsInsideOneCycleCannotBeSeen) {
-  // Forward 30, back 10, forward 5: truly +25, but dir is unchanged, so (3.2)'s first case counts
-  // all 45 pulses forward. The registers cannot reveal this; the header documents it.
+TEST(MotorPosition, TwoReversalsInsideOneCycleCountTheMidpoint) {
+  // Forward 30, back 10, forward 5: truly +25. dir is unchanged, so (3.2)'s first case would count
+  // all 45 pulses forward. stp moved to the second change (enc 1040), which shows the hidden pair:
+  // the 40 pulses before it count as net zero (true: +20, within [−40, 40]), the 5 after it
+  // forward: Δ = 5. For this split (30 forward, 10 back) both are 20 off; the midpoint is never
+  // more than 40 off, the printed formula up to 80.
   EmulatedMotorController controller(0, 1000);
   const EncoderReading before = controller.reading();
   controller.turn(30);
   controller.turn(-10);
   controller.turn(5);
   EXPECT_EQ(controller.true_counts(), 25);
-  EXPECT_EQ(position_increment(before, controller.reading()).counts, 45);
+  EXPECT_EQ(controller.reading().stp, 1040);
+  EXPECT_FALSE(controller.reading().dir);
+  const PositionIncrement increment = position_increment(before, controller.reading());
+  EXPECT_TRUE(increment.hidden_reversals);
+  EXPECT_EQ(increment.counts, 5);
+}
+
+TEST(MotorPosition, StickSlipSpringBackCountsNearlyTrue) {
+  // A joint that sticks and slips (RELIABILITY.md): the shaft creeps 1 pulse, its coupling springs
+  // it back 13 and it runs forward 13 over the same pulses, all in one cycle; truly +1. The
+  // printed formula counts 27 forward (an error of 26 = 2·13); the midpoint counts the 14 before
+  // the last change as zero and the 13 after it: 13, an error of 12 = 13 − 1.
+  EmulatedMotorController controller(7, 2000);
+  PositionTracker tracker(0.0, kPulsesPerRev);
+  tracker.update(controller.reading());
+  controller.turn(1);
+  controller.turn(-13);
+  controller.turn(13);
+  tracker.update(controller.reading());
+  EXPECT_EQ(controller.true_counts(), 1);
+  EXPECT_EQ(tracker.accumulated_counts(), 13);
+  EXPECT_EQ(tracker.hidden_reversal_count(), 1U);
+  // Going on without reversals, the readings count exactly again.
+  controller.turn(400);
+  tracker.update(controller.reading());
+  EXPECT_EQ(tracker.accumulated_counts(), 413);
+  EXPECT_EQ(tracker.hidden_reversal_count(), 1U);
+}
+
+TEST(MotorPosition, HiddenReversalsWithStpOffTheArcCountTheWholeArc) {
+  // stp moved but does not lie on the arc 100 → 130 (a reading the registers cannot explain):
+  // no split can be made, the printed formula's first case stands.
+  const PositionIncrement increment = position_increment({100, 50, false}, {130, 7, false});
+  EXPECT_FALSE(increment.hidden_reversals);
+  EXPECT_EQ(increment.counts, 30);
 }
 
 TEST(MotorPosition, StaleStpGivesTheMidpointEstimate) {
