@@ -150,6 +150,10 @@ void add_offline_commands(CLI::App& cli, Commands& c) {
                   "run the controllers' real firmware (DIR/mu0..mu8.elf, make firmware) in simavr "
                   "instead of the emulation")
       ->check(CLI::ExistingDirectory);
+  cmd->add_option("--physics-step-ms", scenario.physics_step_ms,
+                  "MuJoCo's time step in ms (default: the simulator's, BENCHMARKS.md); the "
+                  "controllers and the bus keep their own timing")
+      ->check(CLI::Range(0.25, 5.0));
 }
 
 void add_soak_and_replay(CLI::App& cli, Commands& c) {

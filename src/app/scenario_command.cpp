@@ -108,6 +108,7 @@ int run_sweep_command(const ScenarioArgs& args, const config::LoadedConfig& conf
   }
   plan.program = args.program;
   if (!args.firmware.empty()) plan.firmware_dir = std::filesystem::absolute(args.firmware).string();
+  plan.physics_step_ms = args.physics_step_ms;
   plan.common_args = {"--config", std::filesystem::absolute(config.config_file).string()};
   if (!config.calibration_file.empty()) {
     plan.common_args.insert(plan.common_args.end(),
@@ -190,6 +191,7 @@ int run_scenario_command(const ScenarioArgs& args, const config::LoadedConfig& c
   options.rover_params = &config.nominal;
   options.plots = !args.no_plots;
   options.firmware_dir = args.firmware;
+  if (args.physics_step_ms) options.physics_step_s = *args.physics_step_ms / 1000.0;
   runner::ScenarioResult result;
   try {
     result = runner::run_scenario(scenario, params, options);

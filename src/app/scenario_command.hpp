@@ -21,6 +21,7 @@ struct ScenarioArgs {
   bool list = false;
   bool no_plots = false;
   std::string firmware;  // a folder of mu0..mu8.elf: the real firmware in simavr
+  std::optional<double> physics_step_ms;  // MuJoCo's step; unset: the simulator's default
   // A sweep: --all and/or --seeds A-B, run as child processes of `program`, `jobs` at a time.
   bool all = false;
   std::string seeds;

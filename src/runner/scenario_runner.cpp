@@ -86,6 +86,7 @@ ScenarioResult run_scenario(const Scenario& scenario, const Params& params,
   sim::SimOptions sim = scenario.sim;
   sim.seed = result.seed;
   if (!options.firmware_dir.empty()) sim.firmware_dir = options.firmware_dir;
+  if (options.physics_step_s) sim.physics_timestep_s = *options.physics_step_s;
   Session session(options.rover_params != nullptr ? *options.rover_params : params, params, sim);
   if (scenario.state_of_charge) session.rover().set_state_of_charge(*scenario.state_of_charge);
   session.set_runtime(link::runtime_settings_from_json(scenario.runtime, session.runtime()));

@@ -50,6 +50,7 @@ struct RunOptions {
   const Params* rover_params = nullptr;
   bool plots = true;
   std::string firmware_dir;  // the controllers' real firmware in simavr, or empty: the emulation
+  std::optional<double> physics_step_s;  // MuJoCo's step, or unset: the simulator's default
 };
 
 class Session;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 
 #include "runner/child_processes.hpp"
@@ -282,6 +283,12 @@ std::vector<SweepRun> run_sweep(const SweepPlan& plan,
       }
       if (!plan.firmware_dir.empty()) {
         argv.insert(argv.end(), {"--firmware", plan.firmware_dir});
+      }
+      if (plan.physics_step_ms) {
+        std::ostringstream step;
+        step.precision(17);
+        step << *plan.physics_step_ms;
+        argv.insert(argv.end(), {"--physics-step-ms", step.str()});
       }
       jobs.push_back(std::move(argv));
       what.emplace_back(name, seed);

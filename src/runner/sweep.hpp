@@ -125,6 +125,7 @@ struct SweepPlan {
   std::size_t jobs = 1;
   std::string out;  // a folder for every run's recording, or empty
   std::string firmware_dir;  // passed on as --firmware: the real firmware in simavr
+  std::optional<double> physics_step_ms;  // passed on as --physics-step-ms
 };
 
 struct SweepProgress {
