@@ -48,7 +48,7 @@ const std::vector<std::string>& phase_metric_names() {
       "max_voltage_drop_v", "final_front_joint_rad", "final_rear_joint_rad",
       "final_joint_error_rad", "max_joint_error_rad", "max_joint_bound_excess_rad",
       "final_front_clearance_m", "final_rear_clearance_m", "min_front_joint_rad", "max_front_joint_rad", "min_rear_joint_rad", "max_rear_joint_rad",
-      "gait_state_changes", "max_lateral_speed_mps"};
+      "gait_state_changes", "max_lateral_speed_mps", "front_axle_forward_m", "rear_axle_forward_m"};
   return names;
 }
 
@@ -97,6 +97,8 @@ Metrics::Snapshot Metrics::snapshot(const Session& session, double time_s) const
   s.joint_rad = {t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint]};
   s.joint_error_rad = joint_error_rad(t);
   s.gait_state_changes = gait_state_changes_;
+  s.axle_x_m = {0.5 * (t.wheel_position_m[kFrontLeft][0] + t.wheel_position_m[kFrontRight][0]),
+                0.5 * (t.wheel_position_m[kBackLeft][0] + t.wheel_position_m[kBackRight][0])};
   return s;
 }
 
@@ -267,6 +269,10 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
   m[p + "max_rear_joint_rad"] = extreme(w.max_joint_rad[1], end.joint_rad[1]);
   m[p + "gait_state_changes"] = end.gait_state_changes - start.gait_state_changes;
   m[p + "max_lateral_speed_mps"] = w.max_lateral_speed_mps;
+  // How far each exterior axle went along x (Field Experiment 6.2: with a rigid wheel "the
+  // exterior axle was immobile" during wheel walking).
+  m[p + "front_axle_forward_m"] = end.axle_x_m[0] - start.axle_x_m[0];
+  m[p + "rear_axle_forward_m"] = end.axle_x_m[1] - start.axle_x_m[1];
 }
 
 void Metrics::observe_odometry(const Session& session) {

@@ -87,6 +87,7 @@ class Metrics {
     std::array<double, 2> joint_rad{};
     double joint_error_rad = 0.0;
     double gait_state_changes = 0.0;
+    std::array<double, 2> axle_x_m{};  // the front and rear axles' midpoints along x (truth)
   };
   struct PhaseWindow {
     Phase phase;

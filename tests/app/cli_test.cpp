@@ -391,6 +391,9 @@ TEST(CliSweep, BadSeedRangesAndMixedOptionsAreUsageErrors) {
   EXPECT_EQ(name_and_all.err, "marsokhod scenario: a sweep takes either a scenario NAME or --all\n");
   const Result jobs = cli({"--config", kConfig.c_str(), "scenario", "dead-man", "--seeds", "1", "--jobs", "0"});
   EXPECT_EQ(jobs.status, 2);
+  const Result step = cli({"--config", kConfig.c_str(), "scenario", "dead-man", "--physics-step-ms", "10"});
+  EXPECT_EQ(step.status, 2);
+  EXPECT_NE(step.err.find("--physics-step-ms"), std::string::npos) << step.err;
 }
 
 }  // namespace
