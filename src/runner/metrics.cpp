@@ -25,7 +25,8 @@ const std::vector<std::string>& run_metric_names() {
       "mean_speed_mps", "max_voltage_drop_v", "min_supply_v", "max_abs_duty", "min_max_duty",
       "max_joint_bound_excess_rad", "final_front_joint_rad", "final_rear_joint_rad",
       "final_front_joint_max_rad", "final_rear_joint_min_rad", "final_joint_error_rad", "mean_abs_slip_mps", "max_slip_mps", "gait_state_changes",
-      "operator_timeouts", "driver_faults", "malformed_frames", "brownouts", "driver_restarts",
+      "operator_timeouts", "driver_faults", "malformed_frames", "brownouts", "max_supply_current_a",
+      "driver_restarts",
       "energy_used_j", "final_max_abs_duty", "time_to_motors_off_s", "time_to_standstill_s",
       "odometry_position_error_m", "odometry_position_error_share", "odometry_heading_error_rad",
       "odometry_position_sigma_m", "wheel_odometry_position_error_m",
@@ -357,6 +358,7 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
   m["max_lateral_speed_mps"] = max_lateral_speed_mps_;
   m["malformed_frames"] = malformed_;
   m["brownouts"] = static_cast<double>(session.rover().electrics().brownout_count);
+  m["max_supply_current_a"] = session.rover().electrics().peak_total_current_a;
   m["driver_restarts"] = static_cast<double>(session.driver_restarts());
   m["energy_used_j"] = session.rover().energy_used_j();
   double final_duty = 0.0;

@@ -8,7 +8,8 @@
 // final_front_joint_max_rad and final_rear_joint_min_rad (the driver's bounds p6_max, p7_min at
 // the end, after the slant response (6.4)), final_joint_error_rad (to the joint targets of the last input), mean_abs_slip_mps,
 // max_slip_mps, gait_state_changes, operator_timeouts, driver_faults, malformed_frames,
-// brownouts, driver_restarts, energy_used_j, final_max_abs_duty (what µ0–µ7 apply at the end),
+// brownouts, max_supply_current_a (the supply's largest current over every physics step, ground
+// truth), driver_restarts, energy_used_j, final_max_abs_duty (what µ0–µ7 apply at the end),
 // and, only when the operator fell silent or the driver halted: time_to_motors_off_s (from then
 // to the last cycle a duty cycle was applied by µ0–µ7) and time_to_standstill_s (to the last
 // cycle with a duty applied, the body moving faster than 0.01 m/s or turning faster than

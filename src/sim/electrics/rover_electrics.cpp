@@ -1,5 +1,6 @@
 #include "sim/electrics/rover_electrics.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace marsokhod::sim {
@@ -28,6 +29,7 @@ RoverElectrics::RoverElectrics(const SimTruth& truth)
   // The rover at rest: the base load alone, the motors' lines at d = 0.
   output_.base_load_a = base_load_a();
   output_.total_current_a = output_.base_load_a;
+  output_.peak_total_current_a = output_.total_current_a;
   output_.supply_v = supply_voltage_v(output_.total_current_a);
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     const MotorTruth& motor = motors_[i].truth();
@@ -63,6 +65,7 @@ const ElectricsOutput& RoverElectrics::step(const ElectricsInput& input, double 
     total_a += output_.motor_current_a[i];
   }
   output_.total_current_a = total_a;
+  output_.peak_total_current_a = std::max(output_.peak_total_current_a, total_a);
   output_.supply_v = supply_step(total_a, dt_s);
   output_.computer_on = computer_.update(output_.supply_v, dt_s);
   output_.reboot_remaining_s = computer_.off_remaining_s();

@@ -41,6 +41,7 @@ struct ElectricsOutput {
   MotorVector motor_current_a{};  // per bridge, during the step just done
   double base_load_a = 0.0;
   double total_current_a = 0.0;
+  double peak_total_current_a = 0.0;  // the largest total_current_a of any step so far
   double supply_v = 0.0;  // U after the step just done
   bool computer_on = true;
   double reboot_remaining_s = 0.0;
