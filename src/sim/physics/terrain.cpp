@@ -124,7 +124,7 @@ Material material_from(const toml::node* node, TableReader& owner, const Materia
     if (const std::optional<Material> named = material_named(*name)) return *named;
     owner.fail("material",
                "= \"" + *name +
-                   "\" is unknown; use \"hard\", \"sand\", \"soft-sand\", \"lunar-soil\" or a table "
+                   "\" is unknown; use \"hard\", \"sand\", \"grass\", \"soft-sand\", \"lunar-soil\" or a table "
                    "{ friction = …, rolling_friction_m = … }",
                node);
   }
@@ -252,6 +252,8 @@ Material hard_ground() { return Material{0.9, 0.0, 0.0, 0.0}; }
 
 Material sand() { return Material{0.5, 0.0, 0.02, 2.0}; }
 
+Material grass() { return Material{1.2, 0.0, 0.01, 0.0}; }
+
 Material soft_sand() {
   Material material{0.5, 0.0, 0.0, 0.0};
   material.soil = soil::dry_sand();
@@ -260,6 +262,7 @@ Material soft_sand() {
 
 std::optional<Material> material_named(std::string_view name) {
   if (name == "hard") return hard_ground();
+  if (name == "grass") return grass();
   if (name == "sand") return sand();
   if (name == "soft-sand") return soft_sand();
   if (name == "lunar-soil") return soft_lunar_soil();
