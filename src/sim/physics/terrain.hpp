@@ -119,7 +119,7 @@ void validate(const TerrainSpec& terrain);
 // is allowed. The keys (angles in degrees, lengths in metres):
 //
 //   kind = "flat" | "slope" | "obstacles" | "heightfield"
-//   material = "hard" | "sand" | "soft-sand" | "lunar-soil"
+//   material = "hard" | "sand" | "grass" | "soft-sand" | "lunar-soil"
 //            | { friction = 0.7, torsional_friction_m = 0.0,
 //                                  rolling_friction_m = 0.01,
 //                                  skid_sinkage = 0.0 }                  # optional, "hard"

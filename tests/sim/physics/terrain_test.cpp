@@ -57,6 +57,13 @@ TEST(TerrainFromToml, NamedAndCustomMaterials) {
       read("[terrain]\nkind = \"flat\"\nmaterial = { friction = 0.5, skid_sinkage = 1.5 }\n");
   EXPECT_DOUBLE_EQ(sinking.ground.skid_sinkage, 1.5);
   EXPECT_FALSE(sand().soil.has_value());  // sand stays MuJoCo's rigid contact
+  // Grass (Field Experiment 5.6): a third more sliding friction than hard ground, a rolling
+  // resistance C_rr = 0.01 m / 0.125 m = 0.08 (between a lawn's 0.05 and sand's 0.16), no ploughing.
+  const TerrainSpec meadow = read("[terrain]\nkind = \"flat\"\nmaterial = \"grass\"\n");
+  EXPECT_DOUBLE_EQ(meadow.ground.sliding_friction / hard_ground().sliding_friction, 4.0 / 3.0);
+  EXPECT_DOUBLE_EQ(meadow.ground.rolling_friction_m / 0.125, 0.08);
+  EXPECT_DOUBLE_EQ(meadow.ground.skid_sinkage, 0.0);
+  EXPECT_FALSE(meadow.ground.soil.has_value());
 }
 
 // Soft soils put sim/soil under the wheels: Wong's dry sand and the lunar soil.
