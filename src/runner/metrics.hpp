@@ -42,7 +42,8 @@
 // at the phase's end, from the true joint angles), max_joint_bound_excess_rad (beyond (5.3), ground truth, during the phase), min_front_joint_rad,
 // max_front_joint_rad, min_rear_joint_rad and max_rear_joint_rad (the joint angles' extremes
 // during the phase, ground truth: what the slant response (6.4) bounds), gait_state_changes,
-// max_lateral_speed_mps. A phase starts at
+// max_lateral_speed_mps, front_axle_forward_m and rear_axle_forward_m (how far the midpoint of
+// each exterior axle's wheels went along x, ground truth). A phase starts at
 // the first cycle at or after from_s and ends at the first at or after to_s (or with the run).
 #pragma once
 

@@ -55,10 +55,15 @@ TEST(RoverElectrics, HeavyDrivingSagsTheBatteryAndItRecovers) {
   const ElectricsOutput& loaded = electrics.step(driving(0.6, 4.0, 1.5), 0.001);
   EXPECT_GT(loaded.total_current_a, 5.0);
   EXPECT_LT(loaded.supply_v, rest_v - 0.6);  // ≈ 4.46 A·0.15 Ω at once
+  const double loaded_a = loaded.total_current_a;
   for (int i = 0; i < 2; ++i) {
     electrics.step(ElectricsInput{}, 0.001);
   }
   EXPECT_NEAR(electrics.output().supply_v, rest_v, 0.01);
+  // Back to the base load, while the peak keeps the loaded step's current (what a scenario's
+  // max_supply_current_a reports).
+  EXPECT_NEAR(electrics.output().total_current_a, 1.05, 1e-12);
+  EXPECT_EQ(electrics.output().peak_total_current_a, loaded_a);
 }
 
 TEST(RoverElectrics, SagFaultBrownsTheComputerOut) {
