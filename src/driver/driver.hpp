@@ -92,6 +92,9 @@ class Driver {
   estimation::NullDriftCorrection null_drift_;
   estimation::PoseCorrection pose_correction_;  // from this cycle's gyro reading, for update_pose
   bool pose_started_ = false;            // update_pose has begun the odometry
+  // The last gyro reading came while every motor was off and at rest: the rover cannot turn, and
+  // the dead reckoning takes its heading as held (a zero-velocity update, update_pose).
+  bool gyro_still_ = false;
   std::uint64_t attitude_readings_ = 0;  // µ8's readings the tip-over monitor has seen
   RuntimeSettings runtime_;
   DriverStatus status_;

@@ -548,5 +548,25 @@ TEST_F(DriverTest, NothingIsKeptBeforeProcedure43HasEnded) {
                    params.motors.initial_position_rad[kFrontJoint]);
 }
 
+// The dead reckoning's heading while the rover stands with every bridge off: it cannot turn, so a
+// gyro whose null has moved (here by 2 counts, 0.034 rad/s of (3.4)) turns the heading by
+// nothing while (3.4) learns the new null; integrated, the readings' excess over the null being
+// learnt would have turned it (a zero-velocity update). Driving, the readings count again.
+TEST_F(SpinDriverTest, StandingStillHoldsTheHeadingWhateverTheGyroReads) {
+  start_up();
+  const OperatorInput stand = targets(0.0);
+  cycles(200, &stand);  // the odometry has started; the null is learnt at 505
+  const double heading_rad = driver.status().pose.heading_rad;
+  rover.yaw = 507;
+  cycles(320, &stand);  // 5 s
+  EXPECT_EQ(driver.status().pose.heading_rad, heading_rad);
+  // Spinning (v2 > 0: counter-clockwise) with the gyro reading 30 counts below its null
+  // (ω = 0.0170·(y − yaw) > 0): the heading follows the readings again.
+  rover.yaw = 477;
+  const OperatorInput spin = targets(0.0, 0.5);
+  cycles(64, &spin);
+  EXPECT_GT(driver.status().pose.heading_rad, heading_rad + 0.1);
+}
+
 }  // namespace
 }  // namespace marsokhod::driver

@@ -29,6 +29,7 @@ class ScriptedRover {
   int dog = 0;
   int measurement_requests = 0;
   std::array<std::uint16_t, 3> acc{279, 251, 376};  // µ8's acc¹..³: TYP, level
+  std::uint16_t yaw = 505;                           // µ8's gyro reading: TYP, at rest
   // vel reports the speed of the duty received this many requests earlier (0: of this very
   // request, as if the motor responded at once): a response chain δ = (0, …, 0, 1) of (4.4).
   int velocity_delay_cycles = 0;
@@ -77,7 +78,7 @@ class ScriptedRover {
       ++measurement_requests;
       if (silent[8]) return;
       // TYP: yaw 505, acc 279/251/376, tlt 527/520, vcc 970.
-      protocol::MeasurementResponse r{505, acc, 527, 970, protocol::TiltChannel::kFront};
+      protocol::MeasurementResponse r{yaw, acc, 527, 970, protocol::TiltChannel::kFront};
       if (measurement_requests % 2 == 0) {
         r.tlt = 520;
         r.tilt_channel = protocol::TiltChannel::kRear;
