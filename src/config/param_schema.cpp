@@ -86,6 +86,8 @@ constexpr ParamSpec kResponse[] = {
      .calibrated = true},
 };
 
+constexpr std::string_view kSupplyKinds[] = {"battery", "tether"};
+
 constexpr ParamSpec kPower[] = {
     {.key = "duty_drop_v", .field = field<&PowerParams::duty_drop_v>, .min = 0.0, .max = 10.0,
      .unit = "V", .symbol = "ξ", .source = "(4.5)",
@@ -98,6 +100,36 @@ constexpr ParamSpec kPower[] = {
      .about = "power management keeps Ū − U below this"},
     {.key = "brownout_v", .field = field<&PowerParams::brownout_v>, .min = 0.0, .max = 100.0,
      .unit = "V", .source = "Field Experiment 6.2", .about = "the onboard computer rebooted here"},
+    {.key = "supply", .field = field<&PowerParams::supply>, .choices = kSupplyKinds,
+     .source = "Field Experiment 1.1",
+     .about = "battery, or tether: the supply's current is kept within tether_current_limit_a"},
+    {.key = "base_current_a", .field = field<&PowerParams::current, &SupplyCurrentParams::base_current_a>,
+     .min = 0.0, .max = 10.0, .unit = "A", .source = "chapter 3.1",
+     .about = "the stationary rover's current (computer, bridges, controllers)"},
+    {.key = "tether_current_limit_a",
+     .field = field<&PowerParams::current, &SupplyCurrentParams::tether_current_limit_a>, .min = 0.5,
+     .max = 30.0, .unit = "A", .source = "Field Experiment 1.1",
+     .about = "the laboratory supply's current limit (PS 613: 6 A)"},
+    {.key = "motor_no_load_current_a",
+     .field = field<&PowerParams::current, &SupplyCurrentParams::motor_no_load_current_a>,
+     .min = 0.0, .max = 5.0, .unit = "A", .about = "a motor's bridge switching, the shaft free"},
+    {.key = "motor_current_per_radps_a",
+     .field = field<&PowerParams::current, &SupplyCurrentParams::motor_current_per_radps_a>,
+     .min = 0.0, .max = 5.0, .unit = "A s/rad", .about = "a motor's losses growing with its speed"},
+    {.key = "motor_torque_constant_nm_per_a",
+     .field = field<&PowerParams::current, &SupplyCurrentParams::motor_torque_constant_nm_per_a>,
+     .min = 0.1, .max = 100.0, .unit = "N m/A", .symbol = "k_t",
+     .about = "torque per ampere at the output shaft"},
+    {.key = "motor_stall_torque_per_v_nm",
+     .field = field<&PowerParams::current, &SupplyCurrentParams::motor_stall_torque_per_v_nm>,
+     .min = 0.0, .max = 100.0, .unit = "N m/V",
+     .about = "the most torque per volt of |d|·U above the dead zone"},
+    {.key = "motor_holding_torque_nm",
+     .field = field<&PowerParams::current, &SupplyCurrentParams::motor_holding_torque_nm>,
+     .min = 0.0, .max = 100.0, .unit = "N m", .about = "the torque a motor holds in its dead zone"},
+    {.key = "motor_dead_zone_v",
+     .field = field<&PowerParams::current, &SupplyCurrentParams::motor_dead_zone_v>, .min = 0.0,
+     .max = 24.0, .unit = "V", .about = "|d|·U below this does not turn the motor"},
 };
 
 constexpr ParamSpec kLoad[] = {

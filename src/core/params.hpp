@@ -75,11 +75,30 @@ struct ResponseParams {
 };
 
 // (4.5) voltage drop and chapter 6.1 power management.
+enum class SupplyKind { kBattery, kTether };  // the batteries, or the laboratory supply's tether
+
+// The supply's current (Field Experiment 1.1, core/behaviour/supply_current.hpp): on the tether
+// the driver keeps the estimated current within the laboratory supply's limit. The motor's
+// constants are a Maxon RE 36 with gearhead GP 42 C behind an L9904 bridge, seen at the output
+// shaft; the stationary rover's current is chapter 3.1's table.
+struct SupplyCurrentParams {
+  double base_current_a = 1.05;              // chapter 3.1: computer, bridges, controllers
+  double tether_current_limit_a = 6.0;       // the PS 613's current limit (Figure 4.2)
+  double motor_no_load_current_a = 0.12;     // a bridge switching, the motor free
+  double motor_current_per_radps_a = 0.06;   // friction losses growing with the shaft's speed
+  double motor_torque_constant_nm_per_a = 7.5;   // k_t at the output shaft
+  double motor_stall_torque_per_v_nm = 1.74;     // stall torque per volt above the dead zone
+  double motor_holding_torque_nm = 5.0;          // the gearhead's and the bridge's hold
+  double motor_dead_zone_v = 1.0;                // |d|·U below this does not turn the motor
+};
+
 struct PowerParams {
   double duty_drop_v = 0.6;                // ξ [V]
   double load_drop_v_s2_per_rad2 = 0.4;    // Ξ [V s²/rad²]
   double max_drop_v = 1.5;                 // Υ [V]
   double brownout_v = 19.5;                // the onboard computer rebooted here (Field Exp. 6.2)
+  SupplyKind supply = SupplyKind::kBattery;  // at start; the operator's configure changes it
+  SupplyCurrentParams current;
 };
 
 // (4.7): l ≈ τ·B, B⁺ when τd ≥ 0, B⁻ when τd < 0.

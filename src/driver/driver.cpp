@@ -317,6 +317,7 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
                        params_->cycle.icr);
     status_.motors[i].duty = duty_[i];
   }
+  status_.supply_current_bound_a = motion_.supply_current_bound_a(duty_, in);
   motion_.record_sent(duty_, in.supply_v);
   update_pose(period_s);
   status_.startup_phase = startup_.phase();

@@ -7,6 +7,8 @@
 #include "core/adaptation/backlash.hpp"
 #include "core/adaptation/load_torque.hpp"
 #include "core/adaptation/no_load_velocity.hpp"
+#include "core/behaviour/supply_current.hpp"
+#include "driver/duty_rules.hpp"
 #include "core/adaptation/voltage_drop.hpp"
 #include "core/behaviour/contract_on_turn.hpp"
 #include "core/behaviour/load_distribution.hpp"
@@ -375,31 +377,71 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   const JointCommands joints =
       input.stopping ? stopping_joint_commands() : joint_commands(input, settings, status);
   const MotorVector walking = walking_motion(joints, bounds, input, settings, status);
+  const bool at_rest_stopping = input.stopping && at_rest();
+  const MotorVector h_load =
+      input.stopping ? MotorVector{}
+                     : behaviour::load_distribution_radps(load_, drive_velocity_[0],
+                                                          params_->load_distribution,
+                                                          settings.switches);
   // (5.4)–(5.6) under D, then the load distribution h (6.5)/(6.6) within the same bounds.
-  const MotorVector limit = mobility::motor_velocity_bounds(
-      params_->motors.scale, status.max_duty, curve_, input.supply_v,
-      params_->motors.nominal_supply_v);
-  const mobility::Summation sum = mobility::sum_motions(driving, walking, limit);
-  status.driving_scale = sum.driving_scale;
-  status.walking_scale = sum.walking_scale;
-  if (input.stopping && at_rest()) {
+  struct Plan {
+    mobility::Summation sum;
+    MotorVector w_hat{};
+  };
+  const auto plan = [&](double max_duty) {
+    const MotorVector limit = mobility::motor_velocity_bounds(
+        params_->motors.scale, max_duty, curve_, input.supply_v, params_->motors.nominal_supply_v);
+    Plan p{mobility::sum_motions(driving, walking, limit), {}};
+    for (std::size_t i = 0; i < kMotorCount; ++i) {
+      p.w_hat[i] = std::clamp(p.sum.velocities_radps[i] + h_load[i], -limit[i], limit[i]);
+    }
+    return p;
+  };
+  status.current_duty_bound = 1.0;
+  if (settings.supply == SupplyKind::kTether && !at_rest_stopping) {
+    // Field Experiment 1.1: the largest D whose duties, after the slew rule, would draw no more
+    // than the tether's limit even if every motor stalled (supply_current.hpp).
+    const auto current_at = [&](double max_duty) {
+      const MotorVector wanted = to_duty(plan(max_duty).w_hat, input);
+      MotorVector sent{};
+      for (std::size_t i = 0; i < kMotorCount; ++i) {
+        // As Driver sends it: the slew rule, then pwm/icr.
+        const double duty = next_duty(last_duty_[i], wanted[i], params_->safety);
+        sent[i] = duty_of(control_request(static_cast<std::uint8_t>(i), duty, params_->cycle.icr),
+                          params_->cycle.icr);
+      }
+      return supply_current_bound_a(sent, input);
+    };
+    status.current_duty_bound = behaviour::current_duty_bound(
+        std::min(behaviour::kMinimumDutyBound, status.max_duty), status.max_duty,
+        params_->power.current.tether_current_limit_a, current_at);
+    status.max_duty = std::min(status.max_duty, status.current_duty_bound);
+  }
+  const Plan p = plan(status.max_duty);
+  status.driving_scale = p.sum.driving_scale;
+  status.walking_scale = p.sum.walking_scale;
+  if (at_rest_stopping) {
     drive_velocity_ = {};
     joint_velocity_ = {};
     for (MotorStatus& m : status.motors) m.commanded_radps = 0.0;
     status.commands = {};
     return MotorVector{};
   }
-  const MotorVector h_load =
-      input.stopping ? MotorVector{}
-                     : behaviour::load_distribution_radps(load_, drive_velocity_[0],
-                                                          params_->load_distribution,
-                                                          settings.switches);
-  MotorVector w_hat{};
+  for (std::size_t i = 0; i < kMotorCount; ++i) status.motors[i].commanded_radps = p.w_hat[i];
+  return to_duty(p.w_hat, input);
+}
+
+double MotionController::supply_current_bound_a(const MotorVector& duty,
+                                                const MotionInput& input) const {
+  const SupplyCurrentParams& current = params_->power.current;
+  // The higher of U and Ū: a stall torque grows with the voltage the supply recovers to.
+  const double supply_v = std::max(input.supply_v, input.reference_supply_v);
+  double total_a = current.base_current_a;
   for (std::size_t i = 0; i < kMotorCount; ++i) {
-    w_hat[i] = std::clamp(sum.velocities_radps[i] + h_load[i], -limit[i], limit[i]);
-    status.motors[i].commanded_radps = w_hat[i];
+    total_a += behaviour::motor_current_bound_a(duty[i], input.shaft_velocity_radps[i], supply_v,
+                                                current);
   }
-  return to_duty(w_hat, input);
+  return total_a;
 }
 
 void MotionController::record_sent(const MotorVector& duty, double supply_v) {

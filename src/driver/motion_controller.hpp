@@ -59,6 +59,10 @@ class MotionController {
   // Tracking only (start-up, calibration, faults): backlash, ν and l, no control.
   void observe(const MotionInput& input, DriverStatus& status);
 
+  // Field Experiment 1.1: the supply's current [A] the duty cycles `duty` could draw at most, every
+  // motor stalled, at this cycle's speeds and voltage (core/behaviour/supply_current.hpp).
+  double supply_current_bound_a(const MotorVector& duty, const MotionInput& input) const;
+
   // The duty cycles actually sent (after the slew rules): ŵ^k = ζW(d)U/Ū (4.3) with Ū the
   // nominal 24 V, remembered for (4.4); d^k for (6.3).
   void record_sent(const MotorVector& duty, double supply_v);

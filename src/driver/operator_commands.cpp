@@ -44,6 +44,7 @@ RuntimeSettings runtime_settings_from(const Params& params) {
   RuntimeSettings s;
   s.switches = behaviour::switches_from_params(params.behaviours, params.load_distribution);
   s.max_drop_v = params.power.max_drop_v;
+  s.supply = params.power.supply;
   return s;
 }
 
@@ -54,13 +55,15 @@ SettingsChange SettingsChange::all_of(const RuntimeSettings& s) {
           s.switches.slant_response,
           s.switches.contract_on_turn,
           s.switches.axle_placement,
-          s.speed_scale};
+          s.speed_scale,
+          s.supply};
 }
 
 RuntimeSettings SettingsChange::applied_to(RuntimeSettings settings) const {
   behaviour::BehaviourSwitches& w = settings.switches;
   settings.max_drop_v = max_drop_v.value_or(settings.max_drop_v);
   settings.speed_scale = speed_scale.value_or(settings.speed_scale);
+  settings.supply = supply.value_or(settings.supply);
   w.load_distribution = load_distribution.value_or(w.load_distribution);
   w.power_management = power_management.value_or(w.power_management);
   w.slant_response = slant_response.value_or(w.slant_response);

@@ -38,6 +38,9 @@ struct RuntimeSettings {
   behaviour::BehaviourSwitches switches;
   double max_drop_v = 1.5;   // Υ of (6.3), (0, 10] V
   double speed_scale = 1.0;  // v1ᵈ…v4ᵈ are scaled by this ∈ [0, 1] (maximum speed)
+  // What feeds the rover: on the tether the supply's current is kept within its limit
+  // (core/behaviour/supply_current.hpp).
+  SupplyKind supply = SupplyKind::kBattery;
   bool operator==(const RuntimeSettings&) const = default;
 };
 RuntimeSettings runtime_settings_from(const Params& params);
@@ -52,6 +55,7 @@ struct SettingsChange {
   std::optional<bool> contract_on_turn;
   std::optional<bool> axle_placement;
   std::optional<double> speed_scale;
+  std::optional<SupplyKind> supply;
   bool operator==(const SettingsChange&) const = default;
 
   // Every setting: `settings` as a change.

@@ -64,6 +64,12 @@ struct DriverStatus {
   int sensor_silent_cycles = 0;     // µ8
   // Chapters 5 and 6.
   double max_duty = 1.0;            // D of (6.3)
+  // Field Experiment 1.1 (core/behaviour/supply_current.hpp): the supply's current the duties
+  // sent this cycle could draw at most, every motor stalled (every supply), and the bound D_I on
+  // D that keeps it within the tether's limit (1 on the battery; max_duty is the smaller of it
+  // and (6.3)'s).
+  double supply_current_bound_a = 0.0;
+  double current_duty_bound = 1.0;
   double driving_scale = 1.0;       // κ of (5.5)
   double walking_scale = 1.0;
   TargetStatus targets;             // what the operator asks (after the timeout rule)

@@ -299,7 +299,7 @@ void write_mission(const navigation::MissionRequest& r, Json& object) {
 }
 
 std::vector<std::string_view> settings_keys() {
-  return {"max_drop_v", "load_distribution", "behaviours", "speed_scale"};
+  return {"max_drop_v", "load_distribution", "behaviours", "speed_scale", "supply"};
 }
 
 driver::SettingsChange read_settings_change(const Json& object, const Reading& how) {
@@ -312,6 +312,18 @@ driver::SettingsChange read_settings_change(const Json& object, const Reading& h
   if_present(object, "behaviours", [&](const Json& v) { read_behaviours(v, how, change); });
   if_present(object, "speed_scale", [&](const Json& v) {
     change.speed_scale = read_number(v, path(how, "speed_scale"));
+  });
+  if_present(object, "supply", [&](const Json& v) {
+    const std::string field = path(how, "supply");
+    const std::string& id = read_string(v, field);
+    if (id == "battery") {
+      change.supply = SupplyKind::kBattery;
+    } else if (id == "tether") {
+      change.supply = SupplyKind::kTether;
+    } else {
+      throw FieldError(field, field + ": unknown supply " + shown_value(v) +
+                                  "; expected \"battery\" or \"tether\"");
+    }
   });
   if (auto error = driver::check_settings(change)) throw_field_error(*error, how.prefix);
   return change;
@@ -332,6 +344,7 @@ void write_settings_change(const driver::SettingsChange& change, Json& object) {
   flag("axle_placement", change.axle_placement);
   if (!behaviours.empty()) object["behaviours"] = behaviours;
   if (change.speed_scale) object["speed_scale"] = *change.speed_scale;
+  if (change.supply) object["supply"] = *change.supply == SupplyKind::kTether ? "tether" : "battery";
 }
 
 Json operator_input_json(const driver::OperatorInput& input) {

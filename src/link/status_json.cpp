@@ -106,6 +106,8 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
       {"motors", motors},
       {"sensor_silent_cycles", s.sensor_silent_cycles},
       {"max_duty", s.max_duty},
+      {"supply_current_bound_a", s.supply_current_bound_a},
+      {"current_duty_bound", s.current_duty_bound},
       {"driving_scale", s.driving_scale},
       {"walking_scale", s.walking_scale},
       {"targets", velocities_json(s.targets)},

@@ -81,7 +81,9 @@ TEST(CommandJson, EveryRuntimeSettingRoundTrips) {
   s.max_drop_v = 0.75;
   s.speed_scale = 0.5;
   s.switches = {false, true, false, true, LoadDistributionMode::kVariance};
+  s.supply = SupplyKind::kTether;
   const json text = json::parse(runtime_settings_json(s).dump());
+  EXPECT_EQ(text.at("supply"), "tether");
   EXPECT_EQ(runtime_settings_from_json(text, driver::RuntimeSettings{}), s);
   for (const auto mode :
        {LoadDistributionMode::kOff, LoadDistributionMode::kVariance, LoadDistributionMode::kSlip}) {
@@ -145,6 +147,8 @@ TEST(CommandJson, BadInputIsRefusedNamingTheField) {
   EXPECT_EQ(runtime_error_field(R"({"max_drop_v":0})"), "runtime.max_drop_v");
   EXPECT_EQ(runtime_error_field(R"({"speed_scale":1.5})"), "runtime.speed_scale");
   EXPECT_EQ(runtime_error_field(R"({"load_distribution":"x"})"), "runtime.load_distribution");
+  EXPECT_EQ(runtime_error_field(R"({"supply":"mains"})"), "runtime.supply");
+  EXPECT_EQ(runtime_error_field(R"({"supply":true})"), "runtime.supply");
   EXPECT_EQ(runtime_error_field(R"({"behaviours":true})"), "runtime.behaviours");
   EXPECT_EQ(runtime_error_field(R"({"max_drop":1})"), "runtime.max_drop");
   // A FieldError is an std::invalid_argument, what the scenario reader catches.

@@ -108,12 +108,13 @@ driver::RuntimeSettings unusual_settings() {
   s.switches.slant_response = true;
   s.switches.contract_on_turn = false;
   s.switches.axle_placement = true;
+  s.supply = SupplyKind::kTether;
   return s;
 }
 
 TEST(FoxgloveProtocol, TheSettingsAreParametersUnderConfiguresKeys) {
   const Json parameters = settings_parameters(runtime_settings_json(unusual_settings()));
-  ASSERT_EQ(parameters.size(), 7U);
+  ASSERT_EQ(parameters.size(), 8U);
   std::map<std::string, Json> by_name;
   for (const Json& p : parameters) by_name[p["name"]] = p;
   EXPECT_EQ(by_name.at("max_drop_v")["value"], 2.25);
@@ -121,6 +122,7 @@ TEST(FoxgloveProtocol, TheSettingsAreParametersUnderConfiguresKeys) {
   EXPECT_EQ(by_name.at("speed_scale")["value"], 0.5);
   EXPECT_EQ(by_name.at("load_distribution")["value"], "v");
   EXPECT_FALSE(by_name.at("load_distribution").contains("type"));
+  EXPECT_EQ(by_name.at("supply")["value"], "tether");
   EXPECT_EQ(by_name.at("behaviours.power_management")["value"], false);
   EXPECT_EQ(by_name.at("behaviours.axle_placement")["value"], true);
 }

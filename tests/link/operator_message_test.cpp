@@ -83,7 +83,7 @@ TEST(OperatorMessage, RoundTripsEveryMessageType) {
   expect_round_trip(PingMessage{});
   expect_round_trip(ConfigureMessage{});
   expect_round_trip(ConfigureMessage{{10.0, LoadDistributionMode::kSlip, false, true, false, true,
-                                      0.0}});
+                                      0.0, SupplyKind::kTether}});
   ConfigureMessage partial;
   partial.change.slant_response = false;
   partial.change.speed_scale = 1.0;

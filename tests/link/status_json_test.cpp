@@ -102,7 +102,7 @@ TEST(StatusJson, CarriesEveryFieldUnderItsKey) {
   // The settings in force, in configure's own keys: the console's form shows them.
   EXPECT_EQ(j["settings"], nlohmann::json::parse(R"({"max_drop_v":2.5,"load_distribution":"s",
       "behaviours":{"power_management":true,"slant_response":false,"contract_on_turn":true,
-      "axle_placement":false},"speed_scale":0.5})"));
+      "axle_placement":false},"speed_scale":0.5,"supply":"battery"})"));
 }
 
 TEST(StatusJson, KeysEveryMotorByItsName) {

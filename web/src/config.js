@@ -1,5 +1,5 @@
 // The run-time settings the link accepts (`configure`, RuntimeSettings): Υ, the load
-// distribution, chapter 6's behaviours and the speed scale. Every field starts at the setting in
+// distribution, chapter 6's behaviours, the speed scale and the supply (battery or tether). Every field starts at the setting in
 // force, as the status reports it (`settings`: "off (in force)", a placeholder "1.5 (in force)"),
 // and the form sends only what the operator changed: a key left out of `configure` leaves that
 // setting as it is.
@@ -59,6 +59,12 @@ export function configureMessage(values) {
     if (!(s >= 0 && s <= 1)) return { error: `speed scale: ${values.speed_scale} is out of range; allowed 0..1` };
     message.speed_scale = s;
   }
+  if (values.supply !== undefined && values.supply !== '') {
+    if (values.supply !== 'battery' && values.supply !== 'tether') {
+      return { error: `supply: ${values.supply} is not one of battery, tether` };
+    }
+    message.supply = values.supply;
+  }
   return { message };
 }
 
@@ -73,7 +79,7 @@ const LOAD_DISTRIBUTION_NAMES = { off: 'off', v: 'hᵛ (6.5)', s: 'hˢ (6.6)' };
 export function inForceLabels(settings) {
   /** @type {Record<string, string>} */
   const labels = {};
-  const fields = ['max_drop_v', 'load_distribution', ...BEHAVIOURS, 'speed_scale'];
+  const fields = ['max_drop_v', 'load_distribution', ...BEHAVIOURS, 'speed_scale', 'supply'];
   if (!settings) {
     for (const name of fields) labels[name] = 'unchanged';
     return labels;
@@ -82,6 +88,7 @@ export function inForceLabels(settings) {
   labels.load_distribution = `${LOAD_DISTRIBUTION_NAMES[settings.load_distribution] ?? settings.load_distribution} (in force)`;
   for (const name of BEHAVIOURS) labels[name] = `${settings.behaviours[name] ? 'on' : 'off'} (in force)`;
   labels.speed_scale = `${settings.speed_scale} (in force)`;
+  labels.supply = `${settings.supply} (in force)`;
   return labels;
 }
 

@@ -117,6 +117,8 @@ export interface ConfigureMessage {
   behaviours?: Partial<Record<BehaviourName, boolean>>;
   /** Scales v1ᵈ, v2ᵈ, v3ᵈ, v4ᵈ, in [0, 1]. */
   speed_scale?: number;
+  /** What feeds the rover: on the tether the duties keep the supply's current within its limit. */
+  supply?: Supply;
 }
 
 /** The run-time settings in force (the status' `settings`): every key present. */
@@ -125,7 +127,11 @@ export interface RuntimeSettings {
   load_distribution: LoadDistribution;
   behaviours: Record<BehaviourName, boolean>;
   speed_scale: number;
+  supply: Supply;
 }
+
+/** The rover's supply (Field Experiment 1.1). */
+export type Supply = 'battery' | 'tether';
 
 /** The messages without fields. */
 export interface CommandMessage {
@@ -348,6 +354,10 @@ export interface Status {
   motors: Record<MotorName, MotorStatus>;
   sensor_silent_cycles: number;
   max_duty: StatusNumber;
+  /** The supply's current the duties sent could draw at most, every motor stalled [A]. */
+  supply_current_bound_a: StatusNumber;
+  /** D_I: the bound on D that keeps that within the tether's limit (1 on the battery). */
+  current_duty_bound: StatusNumber;
   driving_scale: StatusNumber;
   walking_scale: StatusNumber;
   targets: Velocities;

@@ -176,7 +176,7 @@ test('the settings in force are parameters; setting them is refused to a client 
   const names = parameters.map((p) => p.name).sort();
   assert.deepEqual(names, ['behaviours.axle_placement', 'behaviours.contract_on_turn',
     'behaviours.power_management', 'behaviours.slant_response', 'load_distribution', 'max_drop_v',
-    'speed_scale']);
+    'speed_scale', 'supply']);
   const id = client.subscribe(channels.get('/status').id);
   await until('a status', () => (received.get(id)?.length ?? 0) >= 1);
   const settings = received.get(id).at(-1).value.settings;

@@ -126,19 +126,21 @@ test('configure sends only what was set, and refuses values out of range', () =>
   assert.match(configureMessage({ ...blank, max_drop_v: '0' }).error, /^Υ: 0 is out of range; allowed \(0, 10\] V$/);
   assert.match(configureMessage({ ...blank, speed_scale: '1.5' }).error, /out of range; allowed 0\.\.1/);
   assert.match(configureMessage({ ...blank, speed_scale: 'fast' }).error, /out of range/);
+  assert.deepEqual(configureMessage({ ...blank, supply: 'tether' }), { message: { type: 'configure', supply: 'tether' } });
+  assert.match(configureMessage({ ...blank, supply: 'mains' }).error, /^supply: mains is not one of battery, tether$/);
 });
 
 test('every configuration field names the setting in force, "unchanged" before the first status', () => {
   const settings = {
-    max_drop_v: 2.5, load_distribution: 'v', speed_scale: 0.75,
+    max_drop_v: 2.5, load_distribution: 'v', speed_scale: 0.75, supply: 'tether',
     behaviours: { power_management: true, slant_response: false, contract_on_turn: true, axle_placement: false },
   };
   assert.deepEqual(inForceLabels(settings), {
     max_drop_v: '2.5 (in force)', load_distribution: 'hᵛ (6.5) (in force)', speed_scale: '0.75 (in force)',
     power_management: 'on (in force)', slant_response: 'off (in force)', contract_on_turn: 'on (in force)',
-    axle_placement: 'off (in force)',
+    axle_placement: 'off (in force)', supply: 'tether (in force)',
   });
-  assert.deepEqual(Object.values(inForceLabels(undefined)), Array(7).fill('unchanged'));
+  assert.deepEqual(Object.values(inForceLabels(undefined)), Array(8).fill('unchanged'));
 });
 
 test('the WebSocket address sits next to the page and never carries the token', () => {

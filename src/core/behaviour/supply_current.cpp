@@ -1,0 +1,27 @@
+#include "core/behaviour/supply_current.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/checks/checks.hpp"
+
+namespace marsokhod::behaviour {
+
+double motor_current_bound_a(double duty, double shaft_velocity_radps, double supply_v,
+                             const SupplyCurrentParams& params) {
+  constexpr const char* kFunction = "motor_current_bound_a";
+  checks::require_within(duty, -1.0, 1.0, kFunction, "duty");
+  checks::require_finite(shaft_velocity_radps, kFunction, "shaft_velocity_radps");
+  checks::require_finite(supply_v, kFunction, "supply_v");
+  checks::require_non_negative(supply_v, kFunction, "supply_v");
+  if (duty == 0.0) return 0.0;
+  const double volts_above_dead_zone =
+      std::max(0.0, std::abs(duty) * supply_v - params.motor_dead_zone_v);
+  const double stall_nm = std::max(params.motor_holding_torque_nm,
+                                   params.motor_stall_torque_per_v_nm * volts_above_dead_zone);
+  return params.motor_no_load_current_a +
+         params.motor_current_per_radps_a * std::abs(shaft_velocity_radps) +
+         std::abs(duty) * stall_nm / params.motor_torque_constant_nm_per_a;
+}
+
+}  // namespace marsokhod::behaviour

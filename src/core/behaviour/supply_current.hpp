@@ -1,0 +1,56 @@
+// Field Experiment 1.1: on the tether the laboratory supply (24 V, 6 A: Figure 4.2's PS 613)
+// holds its voltage only up to its current limit; above it the voltage folds back, and about 1 A
+// further it falls below the onboard computer's 19.5 V: the rover browns out. (6.3) cannot prevent
+// that — it bounds the voltage drop of the batteries' linear model (4.5), and the tether's drop
+// stays a few tenths of a volt right up to the limit, then collapses within a cycle when a wheel
+// strikes a stone or a joint starts to lift the chassis. So on the tether the driver bounds the
+// current the duty cycles could draw whatever the loads do: the current if every motor stalled.
+//
+// One motor at duty d, shaft speed w and supply U (every quantity at the output shaft):
+//   x = max(0, |d|·U − U_dz)                  the voltage that turns the motor
+//   τ_s = max(τ_hold, c·x)                     the most torque it can give (its stall torque)
+//   I = I0 + I1·|w| + |d|·τ_s/k_t   (d ≠ 0),   I = 0   (d = 0: the bridge does not switch)
+// The motor's current τ/k_t flows from the supply only while the bridge conducts, a share |d| of
+// each PWM period (the bridge is a buck converter: U·I_supply = |d|·U·I_motor), and no load can
+// make τ exceed τ_s; so I bounds what the motor draws, whatever it meets. The rover's bound is
+// the stationary rover's I_base (chapter 3.1) plus the eight motors'.
+//
+// The duty bound: D_I, the largest D of (5.5) whose duties — the motions of (5.4) scaled under D,
+// the load distribution, (4.3)'s inverse, then chapter 3.2's slew rule from the duties sent last —
+// keep the bound within the tether's limit; D = min(D of (6.3), D_I). The bound grows with every
+// |d|, so bisection finds D_I; acting through (5.5) it scales every motion alike (κ), so the wheels
+// and the joints keep the kinematics of (5.4) — lowering some duties alone would set wheels
+// against each other, which draws more current, not less. Six wheels at one duty d on 24 V, the
+// joints still: 6·(0.12 + d·1.74·(24d − 1)/7.5) + 1.05 ≤ 6 A gives d ≤ 0.377 (the shipped
+// constants): on the tether the rover drives at about 0.38 of full speed, as the tether allows.
+#pragma once
+
+#include "core/params.hpp"
+
+namespace marsokhod::behaviour {
+
+// I of one motor [A] at duty d, shaft speed w [rad/s] and supply U [V]. Throws
+// std::invalid_argument for a duty outside [−1, 1], a speed that is not finite or a supply
+// voltage that is not finite and ≥ 0.
+double motor_current_bound_a(double duty, double shaft_velocity_radps, double supply_v,
+                             const SupplyCurrentParams& params);
+
+// The largest D in [low, high] whose bound `current_at(D)` [A] is within `limit_a`, by bisection
+// (20 halvings: D to 1e-6); `low` when even it is over. `current_at` is any callable
+// double(double), non-decreasing in D.
+template <class CurrentAt>
+double current_duty_bound(double low, double high, double limit_a, CurrentAt&& current_at) {
+  if (current_at(high) <= limit_a) return high;
+  if (current_at(low) > limit_a) return low;
+  for (int i = 0; i < 20; ++i) {
+    const double mid = 0.5 * (low + high);
+    if (current_at(mid) <= limit_a) {
+      low = mid;
+    } else {
+      high = mid;
+    }
+  }
+  return low;
+}
+
+}  // namespace marsokhod::behaviour

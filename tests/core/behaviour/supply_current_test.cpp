@@ -1,0 +1,71 @@
+// Field Experiment 1.1 on the tether: the bound of a motor's supply current (every load up to its
+// stall torque) and the duty bound D_I that keeps the rover's within the supply's limit.
+#include "core/behaviour/supply_current.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "behaviour_test_support.hpp"
+
+namespace marsokhod::behaviour {
+namespace {
+
+using test::invalid_argument_message;
+using test::kNaN;
+using ::testing::HasSubstr;
+
+constexpr double kTolerance = 1e-12;
+
+TEST(SupplyCurrent, AMotorDrawsItsStallTorquesCurrentForTheShareOfThePeriodItConducts) {
+  const SupplyCurrentParams p;  // I0 0.12 A, I1 0.06 A s/rad, k_t 7.5, c 1.74 N·m/V, U_dz 1 V
+  // d = 0.5 at 24 V: x = 11 V, τ_s = 1.74·11 = 19.14 N·m, I = 0.12 + 0.06·1 + 0.5·19.14/7.5.
+  EXPECT_NEAR(motor_current_bound_a(0.5, 1.0, 24.0, p), 0.18 + 0.5 * 19.14 / 7.5, kTolerance);
+  // Reversed: the same.
+  EXPECT_NEAR(motor_current_bound_a(-0.5, -1.0, 24.0, p), 0.18 + 0.5 * 19.14 / 7.5, kTolerance);
+  // d = 1: the whole stall current, 1.74·23/7.5 = 5.336 A.
+  EXPECT_NEAR(motor_current_bound_a(1.0, 0.0, 24.0, p), 0.12 + 1.74 * 23.0 / 7.5, kTolerance);
+  // In the dead zone (0.03·24 = 0.72 V < 1 V) the motor holds at most 5 N·m.
+  EXPECT_NEAR(motor_current_bound_a(0.03, 0.0, 24.0, p), 0.12 + 0.03 * 5.0 / 7.5, kTolerance);
+  // The bridge off draws nothing, whatever the shaft does.
+  EXPECT_EQ(motor_current_bound_a(0.0, 2.0, 24.0, p), 0.0);
+}
+
+TEST(SupplyCurrent, RejectsWhatIsNotADutyASpeedOrAVoltage) {
+  const SupplyCurrentParams p;
+  EXPECT_THAT(invalid_argument_message([&] { motor_current_bound_a(1.5, 0.0, 24.0, p); }),
+              HasSubstr("duty"));
+  EXPECT_THAT(invalid_argument_message([&] { motor_current_bound_a(0.5, kNaN, 24.0, p); }),
+              HasSubstr("shaft_velocity_radps"));
+  EXPECT_THAT(invalid_argument_message([&] { motor_current_bound_a(0.5, 0.0, -1.0, p); }),
+              HasSubstr("supply_v"));
+}
+
+// Six wheels at one duty d, standing, on 24 V, the joints off: 6·(0.12 + d·1.74·(24d − 1)/7.5) +
+// 1.05 = 6 A gives 24d² − d = (4.95 − 0.72)·7.5/(6·1.74) = 3.03879…, d = (1 + √(1 + 96·3.03879))/48
+// = 0.37727.
+TEST(SupplyCurrent, SixWheelsOnTheTetherGetAbout038) {
+  const SupplyCurrentParams p;
+  const auto current_at = [&](double d) {
+    double total_a = p.base_current_a;
+    for (int wheel = 0; wheel < 6; ++wheel) total_a += motor_current_bound_a(d, 0.0, 24.0, p);
+    return total_a;
+  };
+  const double c = (4.95 - 0.72) * 7.5 / (6.0 * 1.74);
+  const double expected = (1.0 + std::sqrt(1.0 + 96.0 * c)) / 48.0;
+  EXPECT_NEAR(expected, 0.37727, 1e-5);
+  const double bound = current_duty_bound(0.05, 1.0, p.tether_current_limit_a, current_at);
+  EXPECT_NEAR(bound, expected, 2e-6);
+  EXPECT_LE(current_at(bound), p.tether_current_limit_a);
+}
+
+TEST(SupplyCurrent, TheBoundIsTheWholeRangeOrItsFloorAtTheEnds) {
+  const auto linear = [](double d) { return 1.0 + 10.0 * d; };
+  EXPECT_EQ(current_duty_bound(0.05, 0.4, 6.0, linear), 0.4);    // 5 A at 0.4: within
+  EXPECT_EQ(current_duty_bound(0.05, 1.0, 1.2, linear), 0.05);   // 1.5 A even at the floor
+  EXPECT_NEAR(current_duty_bound(0.05, 1.0, 6.0, linear), 0.5, 1e-6);
+}
+
+}  // namespace
+}  // namespace marsokhod::behaviour
