@@ -74,11 +74,11 @@ struct ResponseParams {
   std::vector<double> delta;
 };
 
-// (4.5) voltage drop and chapter 6.1 power management.
 enum class SupplyKind { kBattery, kTether };  // the batteries, or the laboratory supply's tether
 
 // The supply's current (Field Experiment 1.1, core/behaviour/supply_current.hpp): on the tether
-// the driver keeps the estimated current within the laboratory supply's limit. The motor's
+// the driver keeps the current the duty cycles could draw, every motor stalled, within the
+// laboratory supply's limit. The motor's
 // constants are a Maxon RE 36 with gearhead GP 42 C behind an L9904 bridge, seen at the output
 // shaft; the stationary rover's current is chapter 3.1's table.
 struct SupplyCurrentParams {
@@ -92,6 +92,7 @@ struct SupplyCurrentParams {
   double motor_dead_zone_v = 1.0;                // |d|·U below this does not turn the motor
 };
 
+// (4.5) voltage drop and chapter 6.1 power management.
 struct PowerParams {
   double duty_drop_v = 0.6;                // ξ [V]
   double load_drop_v_s2_per_rad2 = 0.4;    // Ξ [V s²/rad²]

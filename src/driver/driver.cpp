@@ -313,8 +313,7 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     // What is sent is pwm/icr: the status and (4.4) see the quantised duty.
     const double duty = next_duty(duty_[i], wanted[i], params_->safety);
-    duty_[i] = duty_of(control_request(static_cast<std::uint8_t>(i), duty, params_->cycle.icr),
-                       params_->cycle.icr);
+    duty_[i] = sent_duty(duty, params_->cycle.icr);
     status_.motors[i].duty = duty_[i];
   }
   status_.supply_current_bound_a = motion_.supply_current_bound_a(duty_, in);

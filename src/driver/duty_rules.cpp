@@ -38,4 +38,6 @@ double duty_of(const protocol::ControlRequest& request, int icr) {
   return (request.drv ? -1.0 : 1.0) * request.pwm / icr;
 }
 
+double sent_duty(double duty, int icr) { return duty_of(control_request(0, duty, icr), icr); }
+
 }  // namespace marsokhod::driver

@@ -27,4 +27,7 @@ protocol::ControlRequest control_request(std::uint8_t node, double duty, int icr
 // d = (−1)^drv·pwm/icr of a request (for status and tests).
 double duty_of(const protocol::ControlRequest& request, int icr);
 
+// The duty µi applies when sent d: duty_of(control_request(·, d, icr), icr), pwm rounded.
+double sent_duty(double duty, int icr);
+
 }  // namespace marsokhod::driver

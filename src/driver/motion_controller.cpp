@@ -7,13 +7,12 @@
 #include "core/adaptation/backlash.hpp"
 #include "core/adaptation/load_torque.hpp"
 #include "core/adaptation/no_load_velocity.hpp"
-#include "core/behaviour/supply_current.hpp"
-#include "driver/duty_rules.hpp"
 #include "core/adaptation/voltage_drop.hpp"
 #include "core/behaviour/contract_on_turn.hpp"
 #include "core/behaviour/load_distribution.hpp"
 #include "core/behaviour/power_management.hpp"
 #include "core/behaviour/slant_response.hpp"
+#include "core/behaviour/supply_current.hpp"
 #include "core/control/bounded_velocity_control.hpp"
 #include "core/control/position_control.hpp"
 #include "core/control/velocity_control.hpp"
@@ -23,6 +22,7 @@
 #include "core/mobility/summation.hpp"
 #include "core/protocol/messages.hpp"
 #include "core/tracking/clock.hpp"
+#include "driver/duty_rules.hpp"
 #include "driver/joint_margin.hpp"
 
 namespace marsokhod::driver {
@@ -407,8 +407,7 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
       for (std::size_t i = 0; i < kMotorCount; ++i) {
         // As Driver sends it: the slew rule, then pwm/icr.
         const double duty = next_duty(last_duty_[i], wanted[i], params_->safety);
-        sent[i] = duty_of(control_request(static_cast<std::uint8_t>(i), duty, params_->cycle.icr),
-                          params_->cycle.icr);
+        sent[i] = sent_duty(duty, params_->cycle.icr);
       }
       return supply_current_bound_a(sent, input);
     };

@@ -16,6 +16,11 @@ constexpr std::array<std::pair<LoadDistributionMode, std::string_view>, 3> kLoad
     {LoadDistributionMode::kSlip, "s"},
 }};
 
+constexpr std::array<std::pair<SupplyKind, std::string_view>, 2> kSupplyIds = {{
+    {SupplyKind::kBattery, "battery"},
+    {SupplyKind::kTether, "tether"},
+}};
+
 const std::vector<std::string_view> kBehaviourKeys = {"power_management", "slant_response",
                                                       "contract_on_turn", "axle_placement"};
 
@@ -316,11 +321,10 @@ driver::SettingsChange read_settings_change(const Json& object, const Reading& h
   if_present(object, "supply", [&](const Json& v) {
     const std::string field = path(how, "supply");
     const std::string& id = read_string(v, field);
-    if (id == "battery") {
-      change.supply = SupplyKind::kBattery;
-    } else if (id == "tether") {
-      change.supply = SupplyKind::kTether;
-    } else {
+    for (const auto& [kind, name] : kSupplyIds) {
+      if (id == name) change.supply = kind;
+    }
+    if (!change.supply) {
       throw FieldError(field, field + ": unknown supply " + shown_value(v) +
                                   "; expected \"battery\" or \"tether\"");
     }
@@ -344,7 +348,11 @@ void write_settings_change(const driver::SettingsChange& change, Json& object) {
   flag("axle_placement", change.axle_placement);
   if (!behaviours.empty()) object["behaviours"] = behaviours;
   if (change.speed_scale) object["speed_scale"] = *change.speed_scale;
-  if (change.supply) object["supply"] = *change.supply == SupplyKind::kTether ? "tether" : "battery";
+  if (change.supply) {
+    for (const auto& [kind, name] : kSupplyIds) {
+      if (kind == *change.supply) object["supply"] = name;
+    }
+  }
 }
 
 Json operator_input_json(const driver::OperatorInput& input) {
