@@ -33,7 +33,7 @@ const std::vector<std::string>& run_metric_names() {
       "wheel_odometry_heading_error_rad", "max_roll_rad", "max_pitch_rad", "tip_over_faults",
       "stuck_faults", "first_tip_over_s", "first_stuck_s", "other_faults", "missions_started",
       "missions_reached", "missions_aborted", "mission_corrections", "final_mission_progress",
-      "max_lateral_speed_mps"};
+      "max_lateral_speed_mps", "max_lateral_drift_mps"};
   static const std::vector<std::string> with_soil = [] {
     std::vector<std::string> all = names;
     all.insert(all.end(), soil_metric_names().begin(), soil_metric_names().end());
@@ -49,7 +49,7 @@ const std::vector<std::string>& phase_metric_names() {
       "max_voltage_drop_v", "final_front_joint_rad", "final_rear_joint_rad",
       "final_joint_error_rad", "max_joint_error_rad", "max_joint_bound_excess_rad",
       "final_front_clearance_m", "final_rear_clearance_m", "min_front_joint_rad", "max_front_joint_rad", "min_rear_joint_rad", "max_rear_joint_rad",
-      "gait_state_changes", "max_lateral_speed_mps", "front_axle_forward_m", "rear_axle_forward_m"};
+      "gait_state_changes", "max_lateral_speed_mps", "max_lateral_drift_mps", "front_axle_forward_m", "rear_axle_forward_m"};
   return names;
 }
 
@@ -106,7 +106,8 @@ Metrics::Snapshot Metrics::snapshot(const Session& session, double time_s) const
 void Metrics::observe_phases(const Session& session, double time_s,
                              std::optional<double> voltage_drop_v, double joint_error_rad,
                              double bound_excess_rad, const std::array<double, 2>& joint_rad,
-                             double lateral_speed_mps) {
+                             double lateral_speed_mps,
+                             std::optional<double> lateral_drift_mps) {
   for (PhaseWindow& w : phases_) {
     if (!w.start && time_s >= w.phase.from_s - kTimeEpsilonS) w.start = snapshot(session, time_s);
     if (!w.start || w.end) continue;
@@ -117,6 +118,9 @@ void Metrics::observe_phases(const Session& session, double time_s,
     w.max_joint_error_rad = std::max(w.max_joint_error_rad, joint_error_rad);
     w.max_bound_excess_rad = std::max(w.max_bound_excess_rad, bound_excess_rad);
     w.max_lateral_speed_mps = std::max(w.max_lateral_speed_mps, lateral_speed_mps);
+    if (lateral_drift_mps) {
+      w.max_lateral_drift_mps = std::max(w.max_lateral_drift_mps, *lateral_drift_mps);
+    }
     for (std::size_t j = 0; j < 2; ++j) {
       w.min_joint_rad[j] = std::min(w.min_joint_rad[j], joint_rad[j]);
       w.max_joint_rad[j] = std::max(w.max_joint_rad[j], joint_rad[j]);
@@ -153,6 +157,9 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   const double lateral_speed_mps =
       std::abs(-std::sin(yaw) * t.velocity_mps[0] + std::cos(yaw) * t.velocity_mps[1]);
   max_lateral_speed_mps_ = std::max(max_lateral_speed_mps_, lateral_speed_mps);
+  const std::optional<double> lateral_drift_mps =
+      sideways_drift_.add(now, t.position_m[0], t.position_m[1], yaw);
+  if (lateral_drift_mps) max_lateral_drift_mps_ = std::max(max_lateral_drift_mps_, *lateral_drift_mps);
   for (double slip : t.wheel_slip_mps) {
     slip_sum_ += std::abs(slip);
     max_slip_mps_ = std::max(max_slip_mps_, std::abs(slip));
@@ -173,7 +180,7 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   }
   observe_phases(session, now, voltage_drop_v, joint_error_rad(t), bound_excess_rad,
                  {t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint]},
-                 lateral_speed_mps);
+                 lateral_speed_mps, lateral_drift_mps);
   follow_truth_odometry(session, cycle, truth_odometry_);
   if (!cycle.driver_running) return;
   observe_odometry(session);
@@ -270,6 +277,7 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
   m[p + "max_rear_joint_rad"] = extreme(w.max_joint_rad[1], end.joint_rad[1]);
   m[p + "gait_state_changes"] = end.gait_state_changes - start.gait_state_changes;
   m[p + "max_lateral_speed_mps"] = w.max_lateral_speed_mps;
+  m[p + "max_lateral_drift_mps"] = w.max_lateral_drift_mps;
   // How far each exterior axle went along x (Field Experiment 6.2: with a rigid wheel "the
   // exterior axle was immobile" during wheel walking).
   m[p + "front_axle_forward_m"] = end.axle_x_m[0] - start.axle_x_m[0];
@@ -356,6 +364,7 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
   m["mission_corrections"] = mission_corrections_;
   m["final_mission_progress"] = final_mission_progress_;
   m["max_lateral_speed_mps"] = max_lateral_speed_mps_;
+  m["max_lateral_drift_mps"] = max_lateral_drift_mps_;
   m["malformed_frames"] = malformed_;
   m["brownouts"] = static_cast<double>(session.rover().electrics().brownout_count);
   m["max_supply_current_a"] = session.rover().electrics().peak_total_current_a;

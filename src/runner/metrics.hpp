@@ -28,7 +28,9 @@
 // missions again from its own ids), mission_corrections (legs driven again, over the reached
 // missions), final_mission_progress (the last mission's progress at the end, 0..1).
 // max_lateral_speed_mps: the largest sideways speed of the centre unit (ground truth, its
-// horizontal velocity along its left axis; Field Experiment 5.2). On soft soil the soil's
+// horizontal velocity along its left axis; Field Experiment 5.2); max_lateral_drift_mps: the
+// largest sideways displacement over any second, per second (sideways_drift.hpp: what carries
+// the rover sideways, not how it shakes). On soft soil the soil's
 // volumes, compaction and rut depths of soil_metrics.hpp.
 //
 // For each [[phase]] (phase_metric_names()), named "PHASE.metric": duration_s, distance_m,
@@ -42,7 +44,8 @@
 // at the phase's end, from the true joint angles), max_joint_bound_excess_rad (beyond (5.3), ground truth, during the phase), min_front_joint_rad,
 // max_front_joint_rad, min_rear_joint_rad and max_rear_joint_rad (the joint angles' extremes
 // during the phase, ground truth: what the slant response (6.4) bounds), gait_state_changes,
-// max_lateral_speed_mps, front_axle_forward_m and rear_axle_forward_m (how far the midpoint of
+// max_lateral_speed_mps, max_lateral_drift_mps (windows ending within the phase),
+// front_axle_forward_m and rear_axle_forward_m (how far the midpoint of
 // each exterior axle's wheels went along x, ground truth). A phase starts at
 // the first cycle at or after from_s and ends at the first at or after to_s (or with the run).
 #pragma once
@@ -56,6 +59,7 @@
 #include "core/params.hpp"
 #include "runner/scenario.hpp"
 #include "runner/session.hpp"
+#include "runner/sideways_drift.hpp"
 
 namespace marsokhod::runner {
 
@@ -98,6 +102,7 @@ class Metrics {
     double max_joint_error_rad = 0.0;
     double max_bound_excess_rad = 0.0;
     double max_lateral_speed_mps = 0.0;
+    double max_lateral_drift_mps = 0.0;
     std::array<double, 2> min_joint_rad{1e9, 1e9};    // p6, p7 (ground truth)
     std::array<double, 2> max_joint_rad{-1e9, -1e9};
   };
@@ -106,7 +111,8 @@ class Metrics {
   double joint_error_rad(const sim::GroundTruth& truth) const;
   void observe_phases(const Session& session, double time_s, std::optional<double> voltage_drop_v,
                       double joint_error_rad, double bound_excess_rad,
-                      const std::array<double, 2>& joint_rad, double lateral_speed_mps);
+                      const std::array<double, 2>& joint_rad, double lateral_speed_mps,
+                      std::optional<double> lateral_drift_mps);
   void add_phase_metrics(const PhaseWindow& window, const Snapshot& end,
                          std::map<std::string, double>& metrics) const;
 
@@ -129,6 +135,8 @@ class Metrics {
   double timeouts_ = 0.0;
   double max_roll_rad_ = 0.0, max_pitch_rad_ = 0.0;  // |roll|, |pitch| of the truth
   double max_lateral_speed_mps_ = 0.0;
+  SidewaysDrift sideways_drift_;
+  double max_lateral_drift_mps_ = 0.0;
   double tip_over_faults_ = 0.0, stuck_faults_ = 0.0;
   double first_tip_over_s_ = -1.0, first_stuck_s_ = -1.0;
   double other_faults_ = 0.0;

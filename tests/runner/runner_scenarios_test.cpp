@@ -90,6 +90,7 @@ TEST(ShippedScenarios, IncludeTheRequiredSet) {
         "front-wheel-walking-slope-slant-on", "front-wheel-walking-slope-slant-off",
         "rear-wheel-walking-slope-slant-on", "rolking-extended-base-slope-slant-on",
         "rolking-extended-base-slope-slant-off", "broken-center-wheel-turning",
+        "tether-current-bound", "tether-no-current-bound",
         "contract-on-turn", "obstacle-axle-placement-on", "obstacle-axle-placement-off",
         // Issue #15: the failsafes that need an estimate, the missions.
         "tip-over", "stuck", "odometry-square-hard", "odometry-square-sand", "waypoint-loop-hard",

@@ -50,7 +50,16 @@ double motor_current_a(const MotorTruth& motor, double duty, int icr, double tor
       motor.no_load_current_a *
           std::max(0.0, 1.0 + motor.current_gain_per_icr_octave * std::log2(period_ratio(icr))) +
       motor.no_load_current_a_per_radps * std::abs(shaft_speed_radps);
-  return no_load_a + std::abs(torque_nm) / motor.torque_constant_nm_per_a;
+  // The motor's current |τ|/k_t flows from the supply only while the bridge conducts, a share
+  // |d| of each PWM period; in the rest it circulates through the bridge's freewheeling path
+  // (the bridge is a buck converter: U·I_supply = |d|·U·I_motor). And only a motoring torque
+  // (τ along d) draws it: a generating motor — its shaft driven along d faster than ω0, or held
+  // by the bridge in its dead zone — turns its current back through the bridge's diodes, the
+  // supply gives nothing for that torque (and is credited nothing: the laboratory supply cannot
+  // take current back, and the battery's charge acceptance is not modelled).
+  const bool motoring = torque_nm * duty > 0.0;
+  return no_load_a +
+         (motoring ? std::abs(duty) * std::abs(torque_nm) / motor.torque_constant_nm_per_a : 0.0);
 }
 
 MotorLine MotorModel::step(double duty, double supply_v, int icr, double shaft_speed_radps,

@@ -8,7 +8,12 @@
 //   ω0 ← ω_ss + (ω0 − ω_ss)·exp(−dt/τ_lag)                   response lag (what δ of (4.4) sees)
 //   B = B⁺ if (ω − ω0)·d ≥ 0 (load drives along d), B⁻ otherwise   (4.6)/(4.7), sign of τ·d
 //   τ_stall = max(τ_hold, c_stall·x)
-//   I = I0(icr) + I1·|ω| + |τ|/k_t   while d ≠ 0; 0 with the bridge off
+//   I = I0(icr) + I1·|ω| + |d|·|τ|/k_t   while d ≠ 0 and τ·d > 0 (motoring; the supply feeds the
+//                                    motor's current only while the bridge conducts, |d| of
+//                                    each PWM period)
+//   I = I0(icr) + I1·|ω|             while τ·d ≤ 0 (generating: the current returns through the
+//                                    bridge's diodes, the supply gives nothing for the torque)
+//   I = 0                            with the bridge off
 // Unlike the driver's (4.3), ω_ss is not proportional to U (the dead zone and the saturation are
 // not), so the driver's U/Ū normalisation is close but not exact, as on the real rover.
 #pragma once

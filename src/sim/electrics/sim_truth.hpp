@@ -48,7 +48,8 @@ struct MotorTruth {
   // gearhead and the shorted bridge when x = 0.
   double stall_torque_per_volt_nm_per_v = 1.74;  // 40 N·m at d = 1, 24 V
   double holding_torque_nm = 5.0;
-  // Supply current of one bridge: I = I0(icr) + I1·|ω| + |τ|/k_t while d ≠ 0, 0 otherwise.
+  // Supply current of one bridge: I = I0(icr) + I1·|ω| + |d|·|τ|/k_t while d ≠ 0, the last term
+  // only while the motor drives (τ·d > 0), 0 with the bridge off (motor_model.hpp).
   double torque_constant_nm_per_a = 7.5;  // k_t at the output shaft (incl. gearhead losses)
   double no_load_current_a = 0.12;        // I0 at icr = 511
   double no_load_current_a_per_radps = 0.06;

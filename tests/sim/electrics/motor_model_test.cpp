@@ -48,18 +48,44 @@ TEST(SimMotorModel, DeadZoneHoldsTheShaftAtSmallDuty) {
 
 TEST(SimMotorModel, HigherIcrDrawsMoreCurrent) {
   const MotorTruth motor = unit_motor();
-  // I0·(1 + 0.15·log2(2)) + I1·|ω| + |τ|/k_t = 0.12·1.15 + 0.06·1 + 3/7.5 at icr 1023.
-  EXPECT_NEAR(motor_current_a(motor, 0.5, 1023, 3.0, 1.0), 0.138 + 0.06 + 0.4, 1e-12);
-  EXPECT_NEAR(motor_current_a(motor, 0.5, 511, 3.0, 1.0), 0.12 + 0.06 + 0.4, 1e-12);
+  // I0·(1 + 0.15·log2(2)) + I1·|ω| + |d|·|τ|/k_t = 0.12·1.15 + 0.06·1 + 0.5·3/7.5 at icr 1023.
+  EXPECT_NEAR(motor_current_a(motor, 0.5, 1023, 3.0, 1.0), 0.138 + 0.06 + 0.2, 1e-12);
+  EXPECT_NEAR(motor_current_a(motor, 0.5, 511, 3.0, 1.0), 0.12 + 0.06 + 0.2, 1e-12);
   EXPECT_EQ(motor_current_a(motor, 0.0, 511, 3.0, 1.0), 0.0);  // bridge off
+}
+
+TEST(SimMotorModel, TheSupplyFeedsTheMotorOnlyWhileTheBridgeConducts) {
+  // A buck converter: the motor's current |τ|/k_t = 6/7.5 = 0.8 A flows from the supply a share
+  // |d| of each period, U·I_supply = |d|·U·I_motor: 0.2 A of it at d = 0.25, all at d = 1.
+  const MotorTruth motor = unit_motor();
+  EXPECT_NEAR(motor_current_a(motor, 0.25, 511, 6.0, 0.0), 0.12 + 0.25 * 0.8, 1e-12);
+  EXPECT_NEAR(motor_current_a(motor, 1.0, 511, 6.0, 0.0), 0.12 + 0.8, 1e-12);
+  EXPECT_NEAR(motor_current_a(motor, -0.25, 511, -6.0, 0.0), 0.12 + 0.25 * 0.8, 1e-12);
+}
+
+TEST(SimMotorModel, GeneratingMotorDrawsOnlyItsLosses) {
+  // The shaft driven along d faster than ω0 (τ·d < 0, a wheel braking the rover downhill or
+  // dragged by the others): the torque's current returns through the diodes, the supply gives
+  // I0 + I1·|ω| = 0.12 + 0.06·1.5 = 0.21 A, where a motoring torque of the same size adds
+  // 0.6·4/7.5 = 0.32 A.
+  const MotorTruth motor = unit_motor();
+  EXPECT_NEAR(motor_current_a(motor, 0.6, 511, -4.0, 1.5), 0.21, 1e-12);
+  EXPECT_NEAR(motor_current_a(motor, -0.6, 511, 4.0, -1.5), 0.21, 1e-12);
+  EXPECT_NEAR(motor_current_a(motor, 0.6, 511, 4.0, 1.5), 0.21 + 0.6 * 4.0 / 7.5, 1e-12);
+  EXPECT_NEAR(motor_current_a(motor, -0.6, 511, -4.0, -1.5), 0.21 + 0.6 * 4.0 / 7.5, 1e-12);
+  // In the dead zone (ω0 = 0) the bridge holds a shaft turned along d by generating: losses
+  // only; turned against d, it motors against the push.
+  EXPECT_NEAR(motor_current_a(motor, 0.02, 511, -5.0, 0.5), 0.12 + 0.03, 1e-12);
+  EXPECT_NEAR(motor_current_a(motor, 0.02, 511, 5.0, -0.5), 0.12 + 0.03 + 0.02 * 5.0 / 7.5, 1e-12);
 }
 
 TEST(SimMotorModel, HeavyDrivingDrawsMoreThanFiveAmperes) {
   // Chapter 3.1: "during heavy duty driving, the current flow might exceed 5 A". Six wheels at
-  // 4 N·m and 1.5 rad/s: 6·(0.12 + 0.09 + 4/7.5) = 4.46 A, plus the base load 1.05 A.
+  // d = 0.9 pushing 5 N·m at 2.3 rad/s: 6·(0.12 + 0.06·2.3 + 0.9·5/7.5) = 5.148 A, plus the base
+  // load 1.05 A.
   const MotorTruth motor = unit_motor();
-  const double total_a = 6.0 * motor_current_a(motor, 0.6, 511, 4.0, 1.5) + 1.05;
-  EXPECT_NEAR(total_a, 5.51, 1e-9);
+  const double total_a = 6.0 * motor_current_a(motor, 0.9, 511, 5.0, 2.3) + 1.05;
+  EXPECT_NEAR(total_a, 6.198, 1e-9);
   EXPECT_GT(total_a, 5.0);
 }
 

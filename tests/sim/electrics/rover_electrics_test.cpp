@@ -51,10 +51,12 @@ TEST(RoverElectrics, DutyDrivesTheNoLoadSpeedsThroughTheLag) {
 TEST(RoverElectrics, HeavyDrivingSagsTheBatteryAndItRecovers) {
   RoverElectrics electrics(full_battery_truth());
   const double rest_v = electrics.step(ElectricsInput{}, 0.001).supply_v;
-  electrics.step(driving(0.6, 4.0, 1.5), 0.001);  // the duty now in force
-  const ElectricsOutput& loaded = electrics.step(driving(0.6, 4.0, 1.5), 0.001);
-  EXPECT_GT(loaded.total_current_a, 5.0);
-  EXPECT_LT(loaded.supply_v, rest_v - 0.6);  // ≈ 4.46 A·0.15 Ω at once
+  // Six wheels at d = 0.9 pushing 5 N·m at 2.3 rad/s: 6·(0.12 + 0.06·2.3 + 0.9·5/7.5) = 5.148 A
+  // more than the base load's 1.05 A (chapter 3.1: heavy driving "might exceed 5 A").
+  electrics.step(driving(0.9, 5.0, 2.3), 0.001);  // the duty now in force
+  const ElectricsOutput& loaded = electrics.step(driving(0.9, 5.0, 2.3), 0.001);
+  EXPECT_NEAR(loaded.total_current_a, 6.198, 1e-9);
+  EXPECT_LT(loaded.supply_v, rest_v - 0.75);  // 5.148 A·0.15 Ω = 0.77 V at once
   const double loaded_a = loaded.total_current_a;
   for (int i = 0; i < 2; ++i) {
     electrics.step(ElectricsInput{}, 0.001);
@@ -69,9 +71,9 @@ TEST(RoverElectrics, HeavyDrivingSagsTheBatteryAndItRecovers) {
 TEST(RoverElectrics, SagFaultBrownsTheComputerOut) {
   RoverElectrics electrics(full_battery_truth());
   electrics.set_extra_series_resistance_ohm(1.2);
-  electrics.step(driving(0.6, 4.0, 1.5), 0.001);
-  // 5.5 A through 1.35 Ω: 25.5 − 7.4 V < 19.5 V.
-  const ElectricsOutput& output = electrics.step(driving(0.6, 4.0, 1.5), 0.001);
+  electrics.step(driving(0.9, 5.0, 2.3), 0.001);
+  // About 6 A through 1.35 Ω: 25.5 − 8.1 V < 19.5 V.
+  const ElectricsOutput& output = electrics.step(driving(0.9, 5.0, 2.3), 0.001);
   EXPECT_LT(output.supply_v, 19.5);
   EXPECT_FALSE(output.computer_on);
   EXPECT_EQ(output.brownout_count, 1U);
