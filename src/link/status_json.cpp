@@ -1,6 +1,10 @@
 #include "link/status_json.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "core/mobility/gait_table.hpp"
 #include "link/command_json.hpp"
@@ -136,8 +140,41 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
   return out;
 }
 
+Json soil_patch_json(const sim::soil::SoilGrid& grid, double x_m, double y_m) {
+  constexpr int kStride = 2;  // every second cell
+  const sim::soil::GridSpec& spec = grid.spec();
+  const double step_m = kStride * spec.cell_m;
+  // The patch's cells: every kStride-th cell from the grid's first, those within half the span.
+  const auto range = [&](double centre, double origin, int cells, double span) {
+    const double first = (centre - 0.5 * span - origin - 0.5 * spec.cell_m) / step_m;
+    const double last = (centre + 0.5 * span - origin - 0.5 * spec.cell_m) / step_m;
+    const int lo = std::max(0, static_cast<int>(std::ceil(first)));
+    const int hi = std::min((cells - 1) / kStride, static_cast<int>(std::floor(last)));
+    return std::pair<int, int>{lo, hi};
+  };
+  const auto [x_lo, x_hi] = range(x_m, spec.origin_x_m, spec.cells_x, kSoilPatchSpanM[0]);
+  const auto [y_lo, y_hi] = range(y_m, spec.origin_y_m, spec.cells_y, kSoilPatchSpanM[1]);
+  const int columns = std::max(0, x_hi - x_lo + 1);
+  const int rows = std::max(0, y_hi - y_lo + 1);
+  std::vector<long> heights;
+  heights.reserve(static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows));
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < columns; ++c) {
+      heights.push_back(std::lround(
+          1000.0 * grid.cell_surface_m((x_lo + c) * kStride, (y_lo + r) * kStride)));
+    }
+  }
+  return {{"origin_m",
+           {spec.origin_x_m + (x_lo * kStride + 0.5) * spec.cell_m,
+            spec.origin_y_m + (y_lo * kStride + 0.5) * spec.cell_m}},
+          {"cell_m", step_m},
+          {"columns", columns},
+          {"rows", rows},
+          {"height_mm", std::move(heights)}};
+}
+
 Json truth_json(const sim::SimulatedRover& rover,
-                const std::optional<estimation::PlanarPose>& odometry) {
+                const std::optional<estimation::PlanarPose>& odometry, bool with_soil) {
   const sim::GroundTruth t = rover.truth();
   Json wheels = Json::array();
   for (const auto& w : t.wheel_position_m) wheels.push_back(w);
@@ -155,6 +192,9 @@ Json truth_json(const sim::SimulatedRover& rover,
     out["odometry"] = {{"x_m", odometry->x_m},
                        {"y_m", odometry->y_m},
                        {"heading_rad", odometry->heading_rad}};
+  }
+  if (with_soil && rover.soft_soil() != nullptr) {
+    out["soil"] = soil_patch_json(rover.soft_soil()->grid(), t.position_m[0], t.position_m[1]);
   }
   return out;
 }

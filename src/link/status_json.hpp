@@ -13,6 +13,7 @@
 #include "core/estimation/odometry_frame.hpp"
 #include "driver/status.hpp"
 #include "sim/rover/simulated_rover.hpp"
+#include "sim/soil/soft_soil.hpp"
 
 namespace marsokhod::link {
 
@@ -30,7 +31,19 @@ nlohmann::json pose_json(const estimation::Pose& pose);
 // wheel_angle_rad (6), wheel_position_m (6 × [x, y, z]), wheel_slip_mps, supply_v, computer_on;
 // with `odometry` (the true pose in the driver's odometry frame, estimation/odometry_frame.hpp),
 // also odometry: {x_m, y_m, heading_rad} for the console's map beside the dead-reckoned pose.
+// With `with_soil` on a soft soil (sim/soil), also soil: soil_patch_json around the rover.
 nlohmann::json truth_json(const sim::SimulatedRover& rover,
-                          const std::optional<estimation::PlanarPose>& odometry = std::nullopt);
+                          const std::optional<estimation::PlanarPose>& odometry = std::nullopt,
+                          bool with_soil = false);
+
+// The soil's surface around (x, y) for the 3-D view's ruts (issue #14): every second cell of the
+// grid (4 cm on the rover's 2 cm grid) over kSoilPatchSpanM, the patch's corner snapped to those
+// cells so that the patch does not shimmer as the rover moves, clipped to the grid:
+//   {"origin_m": [x0, y0], "cell_m": h, "columns": C, "rows": R, "height_mm": [R·C integers]}
+// height_mm[r·C + c] is the surface (world z, mm, rounded) at the cell centre
+// (x0 + c·h, y0 + r·h): rows along +y, columns along +x. The undisturbed ground included, so on
+// a slope the patch is tilted like the ground.
+inline constexpr double kSoilPatchSpanM[2] = {3.2, 2.0};  // along x, along y
+nlohmann::json soil_patch_json(const sim::soil::SoilGrid& grid, double x_m, double y_m);
 
 }  // namespace marsokhod::link

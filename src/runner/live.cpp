@@ -116,10 +116,15 @@ class SimulatedBus final : public LiveBus {
   }
   const driver::DriverStatus& status() const override { return session_->status(); }
   double time_s() const override { return session_->time_s(); }
+  // On a soft soil the ruts around the rover go with the truth once a second of simulated time
+  // (a patch of 4000 heights: the 3-D view's ground, not worth the status rate).
   nlohmann::json truth() const override {
-    return link::truth_json(session_->rover(), truth_odometry_.started()
-                                                   ? std::optional(truth_odometry_.pose())
-                                                   : std::nullopt);
+    const bool with_soil = session_->time_s() >= next_soil_s_;
+    if (with_soil) next_soil_s_ = session_->time_s() + kSoilEveryS;
+    return link::truth_json(session_->rover(),
+                            truth_odometry_.started() ? std::optional(truth_odometry_.pose())
+                                                      : std::nullopt,
+                            with_soil);
   }
   std::optional<TruePose> true_pose() const override {
     return true_pose_of(session_->rover().truth(), joints_);
@@ -131,6 +136,8 @@ class SimulatedBus final : public LiveBus {
   Recorder* recorder_;
   std::size_t next_fault_ = 0;
   estimation::OdometryFrameTracker truth_odometry_;  // the truth in the driver's frame
+  static constexpr double kSoilEveryS = 1.0;
+  mutable double next_soil_s_ = 0.0;  // when truth() next carries the soil's patch
   std::vector<sim::RoverJoint> joints_;  // the URDF's, for /tf/links
 };
 

@@ -168,5 +168,70 @@ TEST(StatusJson, TruthCarriesThePoseInTheOdometryFrameWhenGiven) {
   EXPECT_EQ(truth["position_m"].size(), 3u);
 }
 
+// The 3-D view's ruts (issue #14): every second cell of the grid around the rover, the patch's
+// corner on those cells, the surface in mm.
+TEST(StatusJson, SoilPatchSamplesEverySecondCellAroundThePoint) {
+  const sim::soil::GridSpec spec{-3.0, -3.0, 0.02, 300, 300};
+  sim::soil::SoilGrid grid(spec, sim::soil::dry_sand(), [](double, double) { return 0.0; });
+  grid.set_cell_surface_m(150, 110, -0.025);  // a rut at (0.01, −0.79)
+  grid.set_cell_surface_m(151, 110, -0.040);  // an odd cell: not sampled
+  const nlohmann::json patch = soil_patch_json(grid, 0.2, 0.0);
+  // x within 0.2 ± 1.6 m: sampled cells 80, 82, … 238 (centres −1.39 … 1.77), 80 columns; y within
+  // ±1.0 m: cells 100 … 198 (−0.99 … 0.97), 50 rows.
+  ASSERT_EQ(patch["columns"], 80);
+  ASSERT_EQ(patch["rows"], 50);
+  EXPECT_DOUBLE_EQ(patch["cell_m"].get<double>(), 0.04);
+  EXPECT_NEAR(patch["origin_m"][0].get<double>(), -1.39, 1e-12);
+  EXPECT_NEAR(patch["origin_m"][1].get<double>(), -0.99, 1e-12);
+  const auto& heights = patch["height_mm"];
+  ASSERT_EQ(heights.size(), 80u * 50u);
+  // Cell (150, 110) is column 150/2 − 40 = 35, row 110/2 − 50 = 5: at (−1.39 + 35·0.04,
+  // −0.99 + 5·0.04) = (0.01, −0.79), its centre.
+  EXPECT_EQ(heights[5 * 80 + 35], -25);
+  long others = 0;
+  for (const auto& h : heights) others += h.get<long>() != 0 ? 1 : 0;
+  EXPECT_EQ(others, 1);
+  // A point 10 cm further along x moves the corner by whole sampled cells (no shimmer): the
+  // same rut two or three columns to the left.
+  const nlohmann::json moved = soil_patch_json(grid, 0.3, 0.0);
+  const double shift = moved["origin_m"][0].get<double>() - patch["origin_m"][0].get<double>();
+  EXPECT_NEAR(std::remainder(shift, 0.04), 0.0, 1e-12);
+  const int columns_moved = static_cast<int>(std::lround(shift / 0.04));
+  EXPECT_EQ(moved["height_mm"][5 * 80 + 35 - columns_moved], -25);
+}
+
+TEST(StatusJson, SoilPatchIsClippedToTheGrid) {
+  const sim::soil::GridSpec spec{-1.0, -1.0, 0.02, 100, 100};
+  const sim::soil::SoilGrid grid(spec, sim::soil::dry_sand(),
+                                 [](double x, double) { return 0.1 * x; });  // a slope
+  const nlohmann::json patch = soil_patch_json(grid, 0.9, 0.0);
+  // x: from 0.9 − 1.6 = −0.7 to the grid's last sampled cell, 98 (0.97): cells 16, 18, … 98
+  // (−0.67 … 0.97), 42 columns.
+  ASSERT_EQ(patch["columns"], 42);
+  ASSERT_EQ(patch["rows"], 50);
+  EXPECT_NEAR(patch["origin_m"][0].get<double>(), -0.67, 1e-12);
+  // The undisturbed slope is in the heights: 0.1·x, in mm.
+  EXPECT_EQ(patch["height_mm"][0], -67);
+  EXPECT_EQ(patch["height_mm"][41], 97);
+  // Far off the grid: an empty patch, not an error.
+  const nlohmann::json off = soil_patch_json(grid, 10.0, 10.0);
+  EXPECT_EQ(off["columns"], 0);
+  EXPECT_TRUE(off["height_mm"].empty());
+}
+
+TEST(StatusJson, TruthCarriesTheSoilOnlyOnSoftSoilAndWhenAsked) {
+  const Params params;
+  sim::SimOptions soft;
+  soft.terrain.ground = sim::soft_sand();
+  const sim::SimulatedRover on_sand(params, soft);
+  EXPECT_FALSE(truth_json(on_sand).contains("soil"));
+  const nlohmann::json truth = truth_json(on_sand, std::nullopt, true);
+  ASSERT_TRUE(truth.contains("soil"));
+  EXPECT_EQ(truth["soil"]["columns"], 80);
+  EXPECT_EQ(truth["soil"]["rows"], 50);
+  const sim::SimulatedRover on_hard(params, sim::SimOptions{});
+  EXPECT_FALSE(truth_json(on_hard, std::nullopt, true).contains("soil"));
+}
+
 }  // namespace
 }  // namespace marsokhod::link

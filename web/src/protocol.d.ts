@@ -301,6 +301,18 @@ export interface Truth {
   computer_on?: boolean;
   /** The true pose in the odometry frame of the driver's (re)start, the frame of `status.pose`. */
   odometry?: TruthOdometry;
+  /** On a soft soil, about once a second: the surface around the rover (its ruts). */
+  soil?: SoilPatch;
+}
+
+/** The soil's surface on a square grid: height_mm[r·columns + c] at (origin_m[0] + c·cell_m,
+ * origin_m[1] + r·cell_m), world z in mm. */
+export interface SoilPatch {
+  origin_m: number[];
+  cell_m: number;
+  columns: number;
+  rows: number;
+  height_mm: number[];
 }
 
 /** The simulator's true pose carried into the driver's odometry frame. */

@@ -147,6 +147,80 @@ export function roverPose(status, g = GEOMETRY) {
   };
 }
 
+/**
+ * The soil's surface around the rover (status.truth.soil, on the simulator's soft soils: the
+ * ruts, issue #14) as a triangle mesh: a vertex at each sample, (x0 + c·h, y0 + r·h, height), two
+ * triangles a square. Null for a patch that is not one (missing or non-integer sizes, fewer than
+ * 2 × 2 samples, a height count that does not match, a height that is not a finite number): the
+ * view then keeps what it had.
+ * @param {import('./protocol').SoilPatch | undefined} patch
+ * @returns {{ positions: Float32Array, indices: Uint32Array, colors: Float32Array } | null}
+ */
+export function soilSurface(patch) {
+  if (!patch || typeof patch !== 'object') return null;
+  const { origin_m: origin, cell_m: h, columns, rows, height_mm: heights } = patch;
+  if (!Number.isInteger(columns) || !Number.isInteger(rows) || columns < 2 || rows < 2) return null;
+  if (!Array.isArray(origin) || origin.length !== 2 || !origin.every(finite)) return null;
+  if (!finite(h) || h <= 0) return null;
+  if (!Array.isArray(heights) || heights.length !== rows * columns || !heights.every(finite)) return null;
+  const positions = new Float32Array(rows * columns * 3);
+  for (let r = 0; r < rows; ++r) {
+    for (let c = 0; c < columns; ++c) {
+      const k = r * columns + c;
+      positions[3 * k] = origin[0] + c * h;
+      positions[3 * k + 1] = origin[1] + r * h;
+      positions[3 * k + 2] = heights[k] / 1000;
+    }
+  }
+  // Colours by the relief: each vertex's height over the patch's least-squares plane (the ground
+  // as it lay, flat or sloped), sand where level, darker in a rut, lighter on a bank: 3 cm deep
+  // is 0.55 of the sand's brightness.
+  const plane = leastSquaresPlane(positions);
+  const colors = new Float32Array(rows * columns * 3);
+  for (let k = 0; k < rows * columns; ++k) {
+    const [x, y, z] = [positions[3 * k], positions[3 * k + 1], positions[3 * k + 2]];
+    const relief = z - (plane[0] + plane[1] * x + plane[2] * y);
+    const shade = Math.min(1.4, Math.max(0.35, 1 + 15 * relief));
+    colors.set(SAND.map((v) => Math.min(1, v * shade)), 3 * k);
+  }
+  const indices = new Uint32Array((rows - 1) * (columns - 1) * 6);
+  let n = 0;
+  for (let r = 0; r + 1 < rows; ++r) {
+    for (let c = 0; c + 1 < columns; ++c) {
+      const k = r * columns + c;
+      // Counter-clockwise seen from above (+z): the faces' normals point up.
+      indices.set([k, k + 1, k + columns + 1, k, k + columns + 1, k + columns], n);
+      n += 6;
+    }
+  }
+  return { positions, indices, colors };
+}
+
+const SAND = [0.45, 0.31, 0.17];  // linear RGB of the soil patch where it is level (≈ #b59673)
+
+/**
+ * z = a + b·x + c·y through the points (x, y, z, x, y, z, …) by least squares, about their mean
+ * (well conditioned whatever the coordinates); [mean z, 0, 0] when x or y does not vary.
+ * @param {Float32Array} p
+ * @returns {[number, number, number]}
+ */
+export function leastSquaresPlane(p) {
+  const n = p.length / 3;
+  let mx = 0, my = 0, mz = 0;
+  for (let k = 0; k < n; ++k) { mx += p[3 * k]; my += p[3 * k + 1]; mz += p[3 * k + 2]; }
+  mx /= n; my /= n; mz /= n;
+  let sxx = 0, sxy = 0, syy = 0, sxz = 0, syz = 0;
+  for (let k = 0; k < n; ++k) {
+    const x = p[3 * k] - mx, y = p[3 * k + 1] - my, z = p[3 * k + 2] - mz;
+    sxx += x * x; sxy += x * y; syy += y * y; sxz += x * z; syz += y * z;
+  }
+  const det = sxx * syy - sxy * sxy;
+  if (!(det > 1e-12)) return [mz, 0, 0];
+  const b = (sxz * syy - syz * sxy) / det;
+  const c = (syz * sxx - sxz * sxy) / det;
+  return [mz - b * mx - c * my, b, c];
+}
+
 // A checkerboard of 0.5 m squares: without marks on the ground the rover's motion is invisible.
 // (A texture rather than GridHelper lines, which software renderers draw too faint to see.)
 function groundTexture() {
@@ -336,6 +410,8 @@ export class RoverView {
     this.dirty = true;
     /** @type {Pose['source'] | undefined} */
     this.source = undefined;
+    /** @type {THREE.Mesh | undefined} the soil's patch (soft soils only) */
+    this.soil = undefined;
     this.stage = createStage(container, () => { this.dirty = true; });
     this.model = this.stage ? buildRover(this.stage.scene, g) : null;
     if (!this.stage) return;
@@ -358,7 +434,35 @@ export class RoverView {
     stage.controls.update();
     placeRover(model, pose, this.g);
     this.source = pose.source;
+    this.updateSoil(status.truth?.soil);
     this.dirty = true;
+  }
+
+  /**
+   * The ruts: the soil patch the simulator sends about once a second replaces the last one.
+   * @param {import('./protocol').SoilPatch | undefined} patch
+   */
+  updateSoil(patch) {
+    const surface = soilSurface(patch);
+    if (!surface || !this.stage) return;
+    if (!this.soil) {
+      // Drawn over the checkerboard where the two meet (the undisturbed sand lies at its level).
+      const material = new THREE.MeshLambertMaterial({
+        vertexColors: true, polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -4,
+      });
+      this.soil = new THREE.Mesh(new THREE.BufferGeometry(), material);
+      this.stage.scene.add(this.soil);
+    }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(surface.positions, 3));
+    geometry.setAttribute('color', new THREE.BufferAttribute(surface.colors, 3));
+    geometry.setIndex(new THREE.BufferAttribute(surface.indices, 1));
+    geometry.computeVertexNormals();
+    this.soil.geometry.dispose();
+    this.soil.geometry = geometry;
+    // What is shown, for the operator's tools and the browser tests.
+    this.container.dataset.soil = `${patch?.columns}x${patch?.rows}`;
+    this.container.dataset.soilLowestMm = String(Math.min(...(patch?.height_mm ?? [])));
   }
 
   resize() {

@@ -46,10 +46,11 @@ export function checkPrerequisites() {
 }
 
 // Starts `marsokhod run` on a free port; resolves when it prints its console address.
-export async function startServer(token) {
+// `extra`: more arguments for `marsokhod run` (e.g. --scenario FILE).
+export async function startServer(token, extra = []) {
   const port = await freePort();
   // The token from the environment, as an operator should give it (argv is visible in ps).
-  const args = ['run', '--listen', `127.0.0.1:${port}`, '--web', DIST_DIR, '--quiet'];
+  const args = ['run', '--listen', `127.0.0.1:${port}`, '--web', DIST_DIR, '--quiet', ...extra];
   const child = spawn(SERVER_BIN, args, {
     cwd: REPO_DIR, stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, MARSOKHOD_TOKEN: token },
   });

@@ -5,7 +5,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { axleDistance, strutElevation, jointPosition, roverPose } from '../src/view3d.js';
+import { axleDistance, strutElevation, jointPosition, roverPose, soilSurface, leastSquaresPlane } from '../src/view3d.js';
 import { keyboardReading } from '../src/keyboard.js';
 import {
   readPad, firstStandardPad, mergeReadings, gamepadMessage, neutralReading, applyDeadZone, DEAD_ZONE,
@@ -437,4 +437,43 @@ test('a running velocity mission is not one the heartbeat keeps alive, and its l
   assert.equal(missionSummary(running), '#7 velocity · running', 'another console\'s velocity: no values sent from here');
   assert.equal(missionSummary({ ...running, state: 'aborted', reason: 'the operator\'s input is no longer a velocity' }),
     '#7 velocity · aborted');
+});
+
+test('the soil patch: a vertex at each sample, two upward triangles a square, bad patches refused', () => {
+  // 3 columns × 2 rows at 4 cm from (1.0, −0.5); a rut of 25 mm at row 1, column 1.
+  const patch = { origin_m: [1.0, -0.5], cell_m: 0.04, columns: 3, rows: 2, height_mm: [0, 0, 0, 0, -25, 0] };
+  const surface = soilSurface(patch);
+  assert.ok(surface);
+  assert.equal(surface.positions.length, 6 * 3);
+  close(surface.positions[4 * 3], 1.04, 1e-6, 'x of row 1, column 1');
+  close(surface.positions[4 * 3 + 1], -0.46, 1e-6, 'y of row 1, column 1');
+  close(surface.positions[4 * 3 + 2], -0.025, 1e-7, 'the rut, in metres');
+  close(surface.positions[2 * 3], 1.08, 1e-6, 'x of the last column');
+  assert.equal(surface.indices.length, 2 * 6);  // (3 − 1)·(2 − 1) squares
+  // Each triangle turns counter-clockwise seen from above: its normal points up (+z).
+  for (let t = 0; t < surface.indices.length; t += 3) {
+    const [a, b, c] = [0, 1, 2].map((i) => surface.indices[t + i]);
+    const p = (/** @type {number} */ k) => [surface.positions[3 * k], surface.positions[3 * k + 1]];
+    const [pa, pb, pc] = [p(a), p(b), p(c)];
+    const cross = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pb[1] - pa[1]) * (pc[0] - pa[0]);
+    assert.ok(cross > 0, `triangle ${t / 3} faces down`);
+  }
+  // The rut is darker than the level sand around it.
+  assert.ok(surface.colors[4 * 3] < surface.colors[0], 'the rut is shaded darker');
+  assert.equal(soilSurface(undefined), null);
+  assert.equal(soilSurface({ ...patch, height_mm: [0, 0, 0] }), null, 'too few heights');
+  assert.equal(soilSurface({ ...patch, rows: 1, height_mm: [0, 0, 0] }), null, 'one row is no surface');
+  assert.equal(soilSurface({ ...patch, height_mm: [0, 0, 0, 0, null, 0] }), null, 'a height that is not a number');
+  assert.equal(soilSurface({ ...patch, cell_m: 0 }), null, 'no cell size');
+  assert.equal(soilSurface({ ...patch, columns: 2.5 }), null, 'a fractional size');
+});
+
+test('the soil patch\'s reference plane: a slope is found exactly, a rut does not tilt it much', () => {
+  // z = 0.3 + 0.2·x − 0.1·y on a 5 × 4 grid.
+  const points = [];
+  for (let r = 0; r < 4; ++r) for (let c = 0; c < 5; ++c) points.push(c * 0.5, r * 0.5 - 1, 0.3 + 0.2 * c * 0.5 - 0.1 * (r * 0.5 - 1));
+  const [a, b, cc] = leastSquaresPlane(new Float32Array(points));
+  close(a, 0.3, 1e-6, 'a'); close(b, 0.2, 1e-6, 'b'); close(cc, -0.1, 1e-6, 'c');
+  // One line of points: no plane, the mean height.
+  assert.deepEqual(leastSquaresPlane(new Float32Array([0, 0, 1, 1, 0, 3])).map((v) => Math.round(v * 1e6) / 1e6), [2, 0, 0]);
 });
