@@ -18,12 +18,19 @@
 namespace marsokhod::driver {
 namespace {
 
+// state.range(0) = 1: on the tether (Field Experiment 1.1), where every cycle also bisects D_I
+// through the summation, (4.3)'s inverse and the slew rule (behaviour/supply_current.hpp).
 void BM_DriverStep(benchmark::State& state) {
   constexpr int kCycles = 20000;
   constexpr double kH = 0.0156;
   for (auto _ : state) {
     const Params params;
     Driver driver(params);
+    if (state.range(0) == 1) {
+      RuntimeSettings tether = driver.runtime();
+      tether.supply = SupplyKind::kTether;
+      driver.set_runtime(tether);
+    }
     testing::ScriptedRover rover;
     std::vector<protocol::CanFrame> inbox;
     double t = 0.0;
@@ -53,7 +60,13 @@ void BM_DriverStep(benchmark::State& state) {
     state.counters["max_us"] = step_ns.back() / 1000.0;
   }
 }
-BENCHMARK(BM_DriverStep)->UseManualTime()->Iterations(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DriverStep)
+    ->ArgName("tether")
+    ->Arg(0)
+    ->Arg(1)
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kMicrosecond);
 
 // What issue #15 added to every cycle: the dead reckoning (pose_estimator.hpp), the null drift's
 // correction (null_drift.hpp) and the two failsafes (failsafes.hpp), fed a turning drive whose

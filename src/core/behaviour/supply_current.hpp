@@ -35,14 +35,20 @@ namespace marsokhod::behaviour {
 double motor_current_bound_a(double duty, double shaft_velocity_radps, double supply_v,
                              const SupplyCurrentParams& params);
 
-// The largest D in [low, high] whose bound `current_at(D)` [A] is within `limit_a`, by bisection
-// (20 halvings: D to 1e-6); `low` when even it is over. `current_at` is any callable
-// double(double), non-decreasing in D.
+// The resolution of D_I: a step of D moves no duty by more than the step (κ ≤ 1), and 1/1024 is
+// about one pwm count at the largest icr (1/1023), half of one at the shipped icr = 511. So a
+// finer D_I could not change what the controllers apply by more than a count: ten halvings of
+// [0.05, 1] instead of twenty (the tether's cycle costs 0.38 µs an evaluation, BENCHMARKS.md).
+inline constexpr double kDutyBoundResolution = 1.0 / 1024.0;
+
+// The largest D in [low, high] whose bound `current_at(D)` [A] is within `limit_a`, to within
+// kDutyBoundResolution below it, by bisection; `low` when even it is over. `current_at` is any
+// callable double(double), non-decreasing in D.
 template <class CurrentAt>
 double current_duty_bound(double low, double high, double limit_a, CurrentAt&& current_at) {
   if (current_at(high) <= limit_a) return high;
   if (current_at(low) > limit_a) return low;
-  for (int i = 0; i < 20; ++i) {
+  while (high - low > kDutyBoundResolution) {
     const double mid = 0.5 * (low + high);
     if (current_at(mid) <= limit_a) {
       low = mid;

@@ -56,7 +56,9 @@ TEST(SupplyCurrent, SixWheelsOnTheTetherGetAbout038) {
   const double expected = (1.0 + std::sqrt(1.0 + 96.0 * c)) / 48.0;
   EXPECT_NEAR(expected, 0.37727, 1e-5);
   const double bound = current_duty_bound(0.05, 1.0, p.tether_current_limit_a, current_at);
-  EXPECT_NEAR(bound, expected, 2e-6);
+  // Within the resolution below the closed form, never above it.
+  EXPECT_LE(bound, expected);
+  EXPECT_GT(bound, expected - kDutyBoundResolution);
   EXPECT_LE(current_at(bound), p.tether_current_limit_a);
 }
 
@@ -64,7 +66,13 @@ TEST(SupplyCurrent, TheBoundIsTheWholeRangeOrItsFloorAtTheEnds) {
   const auto linear = [](double d) { return 1.0 + 10.0 * d; };
   EXPECT_EQ(current_duty_bound(0.05, 0.4, 6.0, linear), 0.4);    // 5 A at 0.4: within
   EXPECT_EQ(current_duty_bound(0.05, 1.0, 1.2, linear), 0.05);   // 1.5 A even at the floor
-  EXPECT_NEAR(current_duty_bound(0.05, 1.0, 6.0, linear), 0.5, 1e-6);
+  const double half = current_duty_bound(0.05, 1.0, 6.0, linear);  // 6 A at exactly 0.5
+  EXPECT_LE(half, 0.5);
+  EXPECT_GT(half, 0.5 - kDutyBoundResolution);
+  // Ten halvings of [0.05, 1] reach the resolution: 0.95/2^10 < 1/1024 < 0.95/2^9.
+  int calls = 0;
+  current_duty_bound(0.05, 1.0, 6.0, [&](double d) { ++calls; return linear(d); });
+  EXPECT_EQ(calls, 2 + 10);
 }
 
 }  // namespace
