@@ -145,12 +145,17 @@ Json soil_patch_json(const sim::soil::SoilGrid& grid, double x_m, double y_m) {
   const sim::soil::GridSpec& spec = grid.spec();
   const double step_m = kStride * spec.cell_m;
   // The patch's cells: every kStride-th cell from the grid's first, those within half the span.
+  // The patch's cells: span/step of every kStride-th cell from the grid's first, starting at the
+  // first whose centre lies within half the span before the point; clipped to the grid.
   const auto range = [&](double centre, double origin, int cells, double span) {
+    const int count = static_cast<int>(std::lround(span / step_m));
     const double first = (centre - 0.5 * span - origin - 0.5 * spec.cell_m) / step_m;
-    const double last = (centre + 0.5 * span - origin - 0.5 * spec.cell_m) / step_m;
-    const int lo = std::max(0, static_cast<int>(std::ceil(first)));
-    const int hi = std::min((cells - 1) / kStride, static_cast<int>(std::floor(last)));
-    return std::pair<int, int>{lo, hi};
+    const int last_sample = (cells - 1) / kStride;
+    if (!std::isfinite(first) || first > last_sample || first + count < 0) {
+      return std::pair<int, int>{0, -1};  // off the grid (or no position): an empty patch
+    }
+    const int lo = static_cast<int>(std::ceil(first));
+    return std::pair<int, int>{std::max(0, lo), std::min(last_sample, lo + count - 1)};
   };
   const auto [x_lo, x_hi] = range(x_m, spec.origin_x_m, spec.cells_x, kSoilPatchSpanM[0]);
   const auto [y_lo, y_hi] = range(y_m, spec.origin_y_m, spec.cells_y, kSoilPatchSpanM[1]);

@@ -37,8 +37,10 @@ nlohmann::json truth_json(const sim::SimulatedRover& rover,
                           bool with_soil = false);
 
 // The soil's surface around (x, y) for the 3-D view's ruts (issue #14): every second cell of the
-// grid (4 cm on the rover's 2 cm grid) over kSoilPatchSpanM, the patch's corner snapped to those
-// cells so that the patch does not shimmer as the rover moves, clipped to the grid:
+// grid (4 cm on the rover's 2 cm grid), kSoilPatchSpanM / 4 cm of them each way (80 × 50), from
+// the first within half the span before (x, y) — the corner on those cells, so that the patch
+// does not shimmer as the rover moves — clipped to the grid (empty off it or for a position
+// that is not finite):
 //   {"origin_m": [x0, y0], "cell_m": h, "columns": C, "rows": R, "height_mm": [R·C integers]}
 // height_mm[r·C + c] is the surface (world z, mm, rounded) at the cell centre
 // (x0 + c·h, y0 + r·h): rows along +y, columns along +x. The undisturbed ground included, so on

@@ -29,9 +29,9 @@
 // missions), final_mission_progress (the last mission's progress at the end, 0..1).
 // max_lateral_speed_mps: the largest sideways speed of the centre unit (ground truth, its
 // horizontal velocity along its left axis; Field Experiment 5.2); max_lateral_drift_mps: the
-// largest sideways displacement over any second, per second (sideways_drift.hpp: what carries
-// the rover sideways, not how it shakes). On soft soil the soil's
-// volumes, compaction and rut depths of soil_metrics.hpp.
+// largest sideways travel over any second, per second, each step along the heading it had
+// (sideways_drift.hpp: what carries the rover sideways, not how it shakes). On soft soil the
+// soil's volumes, compaction and rut depths of soil_metrics.hpp.
 //
 // For each [[phase]] (phase_metric_names()), named "PHASE.metric": duration_s, distance_m,
 // forward_distance_m, path_length_m, mean_speed_mps (path length / duration), yaw_change_rad,

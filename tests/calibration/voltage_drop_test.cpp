@@ -1,11 +1,11 @@
 // (4.5) fitted from a recorded drive. The simulator has no ξ or Ξ: its battery drops by
 // R(s)·I plus a polarisation that follows the current with a 5 s lag, and its motors draw
-// I0 + I1·|ω| + |τ|/k_t (sim_truth.hpp). (4.5) is the thesis' linear stand-in for that, so there
-// is no true ξ, Ξ to recover; what the fit must do is predict the drop of a drive it was not fitted
-// to. Fitted on power-management-off (obstacles on battery, then a spin) it predicts the held-out
-// straight-and-spin recording within 0.35 V rms (its drop is ≈ 0.9 V rms: the fit explains about
-// two thirds of it), and clearly better than the thesis' ξ = 0.6 V, Ξ = 0.4 V s²/rad² of the
-// real batteries, which overpredict the simulated battery's drop about twofold.
+// I0 + I1·|ω| + |d|·|τ|/k_t while they drive (motor_model.hpp). (4.5) is the thesis' linear
+// stand-in for that, so there is no true ξ, Ξ to recover; what the fit must do is predict the drop
+// of a drive it was not fitted to. Fitted on power-management-off (obstacles on battery, then a
+// spin) it predicts the held-out straight-and-spin recording within 0.35 V rms (0.12 V), and
+// clearly better than the thesis' ξ = 0.6 V, Ξ = 0.4 V s²/rad² of the real batteries (0.89 V rms
+// off), which overpredict the simulated battery's drop several times.
 #include "calibration/voltage_drop.hpp"
 
 #include <gtest/gtest.h>

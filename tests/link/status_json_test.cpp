@@ -191,13 +191,19 @@ TEST(StatusJson, SoilPatchSamplesEverySecondCellAroundThePoint) {
   long others = 0;
   for (const auto& h : heights) others += h.get<long>() != 0 ? 1 : 0;
   EXPECT_EQ(others, 1);
-  // A point 10 cm further along x moves the corner by whole sampled cells (no shimmer): the
-  // same rut two or three columns to the left.
+  // 10 cm further along x the corner moves to the next sampled cell within reach, (0.3 − 1.6 +
+  // 3 − 0.01)/0.04 = 42.25 → 43: three columns on (no shimmer), the rut three to the left.
   const nlohmann::json moved = soil_patch_json(grid, 0.3, 0.0);
-  const double shift = moved["origin_m"][0].get<double>() - patch["origin_m"][0].get<double>();
-  EXPECT_NEAR(std::remainder(shift, 0.04), 0.0, 1e-12);
-  const int columns_moved = static_cast<int>(std::lround(shift / 0.04));
-  EXPECT_EQ(moved["height_mm"][5 * 80 + 35 - columns_moved], -25);
+  EXPECT_NEAR(moved["origin_m"][0].get<double>(), -1.39 + 3 * 0.04, 1e-12);
+  EXPECT_EQ(moved["height_mm"][5 * 80 + 32], -25);
+  // Where the span's start falls exactly on a sampled cell's centre, still 80 × 50 samples
+  // (span/step of them, not one more): x = −1.39 + 1.6 = 0.21, y = −0.99 + 1.0 = 0.01.
+  const nlohmann::json exact = soil_patch_json(grid, 0.21, 0.01);
+  EXPECT_EQ(exact["columns"], 80);
+  EXPECT_EQ(exact["rows"], 50);
+  EXPECT_NEAR(exact["origin_m"][0].get<double>(), -1.39, 1e-12);
+  // No position, no patch.
+  EXPECT_EQ(soil_patch_json(grid, std::nan(""), 0.0)["columns"], 0);
 }
 
 TEST(StatusJson, SoilPatchIsClippedToTheGrid) {

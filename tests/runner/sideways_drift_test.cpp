@@ -56,13 +56,44 @@ TEST(SidewaysDrift, ShakingInPlaceIsNotDrift) {
   EXPECT_LT(largest, 0.002);
 }
 
-TEST(SidewaysDrift, MeasuresAlongTheHeadingItHasNow) {
+TEST(SidewaysDrift, MeasuresAlongTheRoversOwnLeft) {
   // Moved 1 cm along +x in a second while facing −y (ψ = −90°, left is +x): 1 cm/s sideways.
   SidewaysDrift drift;
   drift.add(0.0, 0.0, 0.0, -std::numbers::pi / 2.0);
   const auto d = drift.add(1.0, 0.01, 0.0, -std::numbers::pi / 2.0);
   ASSERT_TRUE(d);
   EXPECT_NEAR(*d, 0.01, 1e-15);
+}
+
+TEST(SidewaysDrift, DrivingAheadWhileTurningIsNoDrift) {
+  // 0.1 m/s ahead, turning at 0.36 rad/s (a spin's rate), sampled every cycle: an arc of radius
+  // 0.278 m. Projected on the last heading the second's displacement would read v·ω·T/2 =
+  // 1.8 cm/s sideways; step by step along the heading the rover had, the chord of each cycle's
+  // arc leans by half its turn, which the mean heading takes out: under 1e-6 m/s.
+  const double v = 0.1, omega = 0.36, radius = v / omega;
+  SidewaysDrift drift;
+  double largest = 0.0;
+  for (int k = 0; k <= 300; ++k) {
+    const double t = k * kCycleS, yaw = omega * t;
+    const auto d = drift.add(t, radius * std::sin(yaw), radius * (1.0 - std::cos(yaw)), yaw);
+    if (d) largest = std::max(largest, *d);
+  }
+  EXPECT_LT(largest, 1e-6);
+  // And a true side-slip while turning still shows: 0.03 m/s toward the rover's left.
+  SidewaysDrift slipping;
+  std::optional<double> last;
+  double x = 0.0, y = 0.0;
+  for (int k = 0; k <= 300; ++k) {
+    const double t = k * kCycleS, yaw = omega * t;
+    if (k > 0) {
+      const double mid = omega * (t - 0.5 * kCycleS);
+      x += (v * std::cos(mid) - 0.03 * std::sin(mid)) * kCycleS;
+      y += (v * std::sin(mid) + 0.03 * std::cos(mid)) * kCycleS;
+    }
+    last = slipping.add(t, x, y, yaw);
+  }
+  ASSERT_TRUE(last);
+  EXPECT_NEAR(*last, 0.03, 1e-4);
 }
 
 }  // namespace

@@ -154,7 +154,8 @@ export function roverPose(status, g = GEOMETRY) {
  * 2 × 2 samples, a height count that does not match, a height that is not a finite number): the
  * view then keeps what it had.
  * @param {import('./protocol').SoilPatch | undefined} patch
- * @returns {{ positions: Float32Array, indices: Uint32Array, colors: Float32Array } | null}
+ * @returns {{ positions: Float32Array, indices: Uint32Array, colors: Float32Array,
+ *   lowestReliefM: number } | null} lowestReliefM: the deepest point below the patch's plane [m]
  */
 export function soilSurface(patch) {
   if (!patch || typeof patch !== 'object') return null;
@@ -177,9 +178,11 @@ export function soilSurface(patch) {
   // is 0.55 of the sand's brightness.
   const plane = leastSquaresPlane(positions);
   const colors = new Float32Array(rows * columns * 3);
+  let lowestReliefM = 0;
   for (let k = 0; k < rows * columns; ++k) {
     const [x, y, z] = [positions[3 * k], positions[3 * k + 1], positions[3 * k + 2]];
     const relief = z - (plane[0] + plane[1] * x + plane[2] * y);
+    lowestReliefM = Math.min(lowestReliefM, relief);
     const shade = Math.min(1.4, Math.max(0.35, 1 + 15 * relief));
     colors.set(SAND.map((v) => Math.min(1, v * shade)), 3 * k);
   }
@@ -193,7 +196,7 @@ export function soilSurface(patch) {
       n += 6;
     }
   }
-  return { positions, indices, colors };
+  return { positions, indices, colors, lowestReliefM };
 }
 
 const SAND = [0.45, 0.31, 0.17];  // linear RGB of the soil patch where it is level (≈ #b59673)
@@ -311,8 +314,11 @@ function createStage(container, onChange) {
   sun.position.set(3, -2, 5);
   scene.add(sun);
 
+  // The ground is a backdrop: drawn first and writing no depth, so that the soil's ruts below
+  // its level (the soil patch, on soft soils) and wheels sunk into them are not hidden by it.
   const ground = new THREE.Mesh(new THREE.PlaneGeometry(GROUND_SIZE_M, GROUND_SIZE_M),
-    new THREE.MeshLambertMaterial({ map: groundTexture() }));
+    new THREE.MeshLambertMaterial({ map: groundTexture(), depthWrite: false }));
+  ground.renderOrder = -1;
   scene.add(ground);
 
   const camera = new THREE.PerspectiveCamera(45, 1, 0.05, 200);
@@ -443,13 +449,15 @@ export class RoverView {
    * @param {import('./protocol').SoilPatch | undefined} patch
    */
   updateSoil(patch) {
+    if (!this.stage) return;
+    if (patch && patch.columns === 0) {  // the rover left the soil's grid: nothing to show
+      if (this.soil) this.soil.visible = false;
+      return;
+    }
     const surface = soilSurface(patch);
-    if (!surface || !this.stage) return;
+    if (!surface) return;
     if (!this.soil) {
-      // Drawn over the checkerboard where the two meet (the undisturbed sand lies at its level).
-      const material = new THREE.MeshLambertMaterial({
-        vertexColors: true, polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -4,
-      });
+      const material = new THREE.MeshLambertMaterial({ vertexColors: true });
       this.soil = new THREE.Mesh(new THREE.BufferGeometry(), material);
       this.stage.scene.add(this.soil);
     }
@@ -460,9 +468,11 @@ export class RoverView {
     geometry.computeVertexNormals();
     this.soil.geometry.dispose();
     this.soil.geometry = geometry;
+    this.soil.visible = true;
     // What is shown, for the operator's tools and the browser tests.
     this.container.dataset.soil = `${patch?.columns}x${patch?.rows}`;
-    this.container.dataset.soilLowestMm = String(Math.min(...(patch?.height_mm ?? [])));
+    this.container.dataset.soilPatches = String(Number(this.container.dataset.soilPatches ?? 0) + 1);
+    this.container.dataset.soilDeepestMm = String(Math.round(surface.lowestReliefM * 1000));
   }
 
   resize() {

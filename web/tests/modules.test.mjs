@@ -458,8 +458,11 @@ test('the soil patch: a vertex at each sample, two upward triangles a square, ba
     const cross = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pb[1] - pa[1]) * (pc[0] - pa[0]);
     assert.ok(cross > 0, `triangle ${t / 3} faces down`);
   }
-  // The rut is darker than the level sand around it.
+  // The rut is darker than the level sand around it, and lies the deepest below the patch's
+  // least-squares plane: by symmetry the plane is level along x and fits each row's mean, 0 and
+  // −25/3 mm, so the rut lies 25 − 25/3 = 16.67 mm below it.
   assert.ok(surface.colors[4 * 3] < surface.colors[0], 'the rut is shaded darker');
+  close(surface.lowestReliefM, -0.025 * 2 / 3, 1e-6, 'the rut below the plane');
   assert.equal(soilSurface(undefined), null);
   assert.equal(soilSurface({ ...patch, height_mm: [0, 0, 0] }), null, 'too few heights');
   assert.equal(soilSurface({ ...patch, rows: 1, height_mm: [0, 0, 0] }), null, 'one row is no surface');

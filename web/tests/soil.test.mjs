@@ -8,7 +8,8 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import {
-  checkPrerequisites, startServer, launchBrowser, openConsole, screenshot, REPO_DIR,
+  checkPrerequisites, startServer, launchBrowser, openConsole, screenshot, waitForLinkState,
+  REPO_DIR,
 } from './harness.mjs';
 
 const TOKEN = 'soil-test-token-0123456789abcdef';
@@ -16,6 +17,14 @@ const SCENARIO = path.join(REPO_DIR, 'scenarios', 'sideways-drift-soft-sand.toml
 const TIMEOUT_MS = 30000;
 let server;
 let browser;
+
+async function takeControl(page) {
+  await page.click('#take-control');
+  await waitForLinkState(page, 'in-control', 3000);
+  // The take-over's stop holds until the input is neutral and the driver re-armed.
+  await page.waitForFunction(() => window.marsokhod.status?.stop_latched === false, null,
+    { timeout: 3000 });
+}
 
 before(async () => {
   checkPrerequisites();
@@ -42,10 +51,58 @@ test('on soft sand the status carries the ruts and the 3-D view draws them', asy
   const centre = [patch.origin_m[0] + 79 * 0.02, patch.origin_m[1] + 49 * 0.02];
   assert.ok(Math.abs(centre[0] - rover[0]) <= 0.04 && Math.abs(centre[1] - rover[1]) <= 0.04,
     `the patch's centre ${centre} is not at the rover ${rover}`);
-  // The standing wheels have pressed their ruts: the centre wheels under the centre unit's 30 kg
-  // 1–3 cm (Bekker's static sinkage, docs/simulator.md).
-  await page.waitForFunction(() => Number(document.getElementById('view3d')?.dataset.soilLowestMm) <= -10,
-    null, { timeout: TIMEOUT_MS });
+  // Drive forward 6 s (W): the wheels leave their ruts behind them, 1–3 cm deep (Bekker's
+  // sinkage under a sixth of the rover, docs/simulator.md), in the camera's view behind the rover.
+  await page.waitForFunction(() => window.marsokhod.status?.mode === 'driving', null,
+    { timeout: TIMEOUT_MS });  // the driver's start-up done
+  await takeControl(page);
+  await page.locator('body').click({ position: { x: 5, y: 300 } });  // the keyboard's focus on the page
+  await page.keyboard.down('KeyW');
+  await page.waitForFunction(() => window.marsokhod.status?.targets?.v1_radps > 1, null,
+    { timeout: 3000 });  // W reached the driver
+  await page.waitForTimeout(6000);
+  await page.keyboard.up('KeyW');
+  const driven = await page.evaluate(([x, y]) => {
+    const p = window.marsokhod.status.truth.position_m;
+    return Math.hypot(p[0] - x, p[1] - y);
+  }, rover);
+  assert.ok(driven > 0.1, `the rover drove only ${driven} m`);
+  // Two more patches (about 2 s): the last one sent after the rover stopped.
+  const patches = await page.evaluate(() => Number(document.getElementById('view3d').dataset.soilPatches));
+  await page.waitForFunction((n) => Number(document.getElementById('view3d').dataset.soilPatches) >= n + 2,
+    patches, { timeout: TIMEOUT_MS });
+  assert.ok(await page.evaluate(() => Number(document.getElementById('view3d').dataset.soilDeepestMm) <= -10),
+    'no rut 1 cm deep in the patch');
+  // The ruts are drawn, not hidden under the ground plane: rendered with the soil and without it,
+  // the picture has pixels where the soil is clearly darker than the ground it covers (a rut:
+  // 1 cm deep is 0.85 of the sand's brightness, 3 cm 0.55).
+  const darker = await page.evaluate(() => {
+    const view = window.marsokhod.view;
+    const read = () => {
+      view.dirty = true;
+      view.draw();
+      const canvas = view.stage.renderer.domElement;
+      const copy = document.createElement('canvas');
+      copy.width = canvas.width;
+      copy.height = canvas.height;
+      const g = copy.getContext('2d');
+      g.drawImage(canvas, 0, 0);
+      return g.getImageData(0, 0, copy.width, copy.height).data;
+    };
+    const withSoil = read();
+    view.soil.visible = false;
+    const without = read();
+    view.soil.visible = true;
+    view.dirty = true;
+    let count = 0;
+    for (let i = 0; i < withSoil.length; i += 4) {
+      const a = withSoil[i] + withSoil[i + 1] + withSoil[i + 2];
+      const b = without[i] + without[i + 1] + without[i + 2];
+      if (a < b - 60) ++count;
+    }
+    return count;
+  });
+  assert.ok(darker >= 200, `only ${darker} pixels show a rut darker than the ground`);
   await screenshot(page, 'console-soft-sand-ruts.png');
   assert.deepEqual(page.problems, []);
 });

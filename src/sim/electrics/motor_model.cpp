@@ -68,7 +68,8 @@ MotorLine MotorModel::step(double duty, double supply_v, int icr, double shaft_s
   // Exact for a command held over dt_s, so the result does not depend on the step size.
   const double decay = std::exp(-dt_s / truth_.lag_time_constant_s);
   no_load_speed_radps_ = steady_radps + (no_load_speed_radps_ - steady_radps) * decay;
-  // τ·d ≥ 0 of (4.6): the external load pushes the shaft faster than ω0 in the direction of d.
+  // τ_load·d ≥ 0 of (4.6), the thesis' load torque: the external load pushes the shaft faster
+  // than ω0 in the direction of d (the motor's own torque then opposes d: it generates).
   const bool same_sign = (shaft_speed_radps - no_load_speed_radps_) * duty >= 0.0;
   return {no_load_speed_radps_, droop_radps_per_nm(truth_, duty, icr, same_sign),
           stall_torque_nm(truth_, duty, supply_v, icr)};

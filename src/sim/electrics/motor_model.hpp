@@ -6,9 +6,11 @@
 //   x(d, U, icr) = max(0, |d|·U − U_dz(icr))
 //   ω_ss = sign(d)·ζ·k(icr)·x/(1 + k(icr)·x/ω_sat)            steady no-load speed (cf. (4.3))
 //   ω0 ← ω_ss + (ω0 − ω_ss)·exp(−dt/τ_lag)                   response lag (what δ of (4.4) sees)
-//   B = B⁺ if (ω − ω0)·d ≥ 0 (load drives along d), B⁻ otherwise   (4.6)/(4.7), sign of τ·d
+//   B = B⁺ if (ω − ω0)·d ≥ 0 (load drives along d), B⁻ otherwise   (4.6)/(4.7), the sign of
+//                                    τ_load·d with the thesis' load torque τ_load
 //   τ_stall = max(τ_hold, c_stall·x)
-//   I = I0(icr) + I1·|ω| + |d|·|τ|/k_t   while d ≠ 0 and τ·d > 0 (motoring; the supply feeds the
+//   I = I0(icr) + I1·|ω| + |d|·|τ|/k_t   while d ≠ 0 and τ·d > 0, τ = (ω0 − ω)/B the motor's own
+//                                    torque (= −τ_load) (motoring; the supply feeds the
 //                                    motor's current only while the bridge conducts, |d| of
 //                                    each PWM period)
 //   I = I0(icr) + I1·|ω|             while τ·d ≤ 0 (generating: the current returns through the
