@@ -331,6 +331,16 @@ ServerStats ServerCore::stats() const {
 void ServerCore::publish_status(nlohmann::json status) {
   {
     const std::lock_guard lock(mutex_);
+    // The soil's patch (truth.soil, the 3-D view's ruts) goes with one status a second: a newer
+    // status that replaces an unsent one without a patch of its own takes the patch along.
+    if (pending_status_ && status.contains("truth") && status["truth"].is_object() &&
+        !status["truth"].contains("soil")) {
+      nlohmann::json& unsent = *pending_status_;
+      if (unsent.contains("truth") && unsent["truth"].is_object() &&
+          unsent["truth"].contains("soil")) {
+        status["truth"]["soil"] = std::move(unsent["truth"]["soil"]);
+      }
+    }
     pending_status_ = std::move(status);
     ++stats_.statuses_published;
     if (status_flush_posted_) return;  // the flush on its way will take this one

@@ -351,6 +351,29 @@ TEST_F(LinkServerTest, SendsOnlyTheNewestStatusPerPeriod) {
   EXPECT_EQ(server_->stats().statuses_sent, 2U);
 }
 
+TEST_F(LinkServerTest, ANewerStatusKeepsTheSoilPatchOfTheOneItReplaces) {
+  // The simulator sends the soil's patch with one status a second; if a newer status replaces
+  // that one before it is sent, the patch goes with the newer one (its own patch wins).
+  ServerOptions options;
+  options.status_period_s = 1.0;
+  start(options);
+  auto [client, hello] = console();
+  server_->publish_status({{"cycle", 1}});
+  ASSERT_TRUE(client->receive_type("status").has_value());
+  server_->publish_status({{"cycle", 2}, {"truth", {{"soil", {{"rows", 2}}}}}});
+  server_->publish_status({{"cycle", 3}, {"truth", {{"supply_v", 24.0}}}});
+  const auto next = client->receive_type("status", 3s);
+  ASSERT_TRUE(next.has_value());
+  EXPECT_EQ((*next)["status"]["cycle"], 3);
+  EXPECT_EQ((*next)["status"]["truth"]["supply_v"], 24.0);
+  EXPECT_EQ((*next)["status"]["truth"]["soil"]["rows"], 2);
+  server_->publish_status({{"cycle", 4}, {"truth", {{"soil", {{"rows", 5}}}}}});
+  server_->publish_status({{"cycle", 5}, {"truth", {{"soil", {{"rows", 7}}}}}});
+  const auto last = client->receive_type("status", 3s);
+  ASSERT_TRUE(last.has_value());
+  EXPECT_EQ((*last)["status"]["truth"]["soil"]["rows"], 7);
+}
+
 TEST_F(LinkServerTest, AMalformedMessageNamesTheFieldAndSendsNothingOn) {
   start();
   auto [client, hello] = console();
