@@ -144,7 +144,6 @@ Json soil_patch_json(const sim::soil::SoilGrid& grid, double x_m, double y_m) {
   constexpr int kStride = 2;  // every second cell
   const sim::soil::GridSpec& spec = grid.spec();
   const double step_m = kStride * spec.cell_m;
-  // The patch's cells: every kStride-th cell from the grid's first, those within half the span.
   // The patch's cells: span/step of every kStride-th cell from the grid's first, starting at the
   // first whose centre lies within half the span before the point; clipped to the grid.
   const auto range = [&](double centre, double origin, int cells, double span) {

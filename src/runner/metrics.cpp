@@ -159,7 +159,9 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   max_lateral_speed_mps_ = std::max(max_lateral_speed_mps_, lateral_speed_mps);
   const std::optional<double> lateral_drift_mps =
       sideways_drift_.add(now, t.position_m[0], t.position_m[1], yaw);
-  if (lateral_drift_mps) max_lateral_drift_mps_ = std::max(max_lateral_drift_mps_, *lateral_drift_mps);
+  if (lateral_drift_mps) {
+    max_lateral_drift_mps_ = std::max(max_lateral_drift_mps_, *lateral_drift_mps);
+  }
   for (double slip : t.wheel_slip_mps) {
     slip_sum_ += std::abs(slip);
     max_slip_mps_ = std::max(max_slip_mps_, std::abs(slip));

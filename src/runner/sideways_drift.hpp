@@ -5,15 +5,17 @@
 // instantaneous sideways speed (max_lateral_speed_mps) sees that shaking; the drift over a
 // second sees only what carries the rover away.
 //
-// The sideways travel s accumulates each sample's displacement along the left axis the rover had
-// then, l = (−sin ψ, cos ψ) at the sample, so a rover driving ahead while it turns travels no
-// sideways (a projection of the whole window's displacement on the last heading would read
-// v·ω·T/2 of it: 1.8 cm/s at 0.1 m/s and 0.36 rad/s). drift(t) = |s(t) − s(t₀)| / (t − t₀), t₀ the
+// The sideways travel s accumulates each step's displacement along the left axis the rover had
+// during it, l = (−sin ψ, cos ψ) at the mean of the step's two headings (the chord of an arc
+// points along it), so a rover driving ahead while it turns travels no sideways (a projection
+// of the whole window's displacement on the last heading would read v·ω·T/2 of it: 1.8 cm/s at
+// 0.1 m/s and 0.36 rad/s). drift(t) = |s(t) − s(t₀)| / (t − t₀), t₀ the
 // latest sample at or before t − window; none until a whole window lies behind the first sample.
 #pragma once
 
 #include <cmath>
 #include <deque>
+#include <numbers>
 #include <optional>
 
 namespace marsokhod::runner {
@@ -26,7 +28,7 @@ class SidewaysDrift {
   std::optional<double> add(double time_s, double x_m, double y_m, double yaw_rad) {
     if (!samples_.empty()) {
       // Along the mean of the two samples' left axes: the step's own heading to first order.
-      const double yaw = last_yaw_rad_ + 0.5 * std::remainder(yaw_rad - last_yaw_rad_, 2.0 * kPi);
+      const double yaw = last_yaw_rad_ + 0.5 * std::remainder(yaw_rad - last_yaw_rad_, 2.0 * std::numbers::pi);
       sideways_m_ += -std::sin(yaw) * (x_m - last_x_m_) + std::cos(yaw) * (y_m - last_y_m_);
     }
     last_x_m_ = x_m;
@@ -41,7 +43,6 @@ class SidewaysDrift {
   }
 
  private:
-  static constexpr double kPi = 3.14159265358979323846;
   struct Sample {
     double time_s, sideways_m;
   };
