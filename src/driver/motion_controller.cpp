@@ -411,9 +411,12 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
       }
       return supply_current_bound_a(sent, input);
     };
-    status.current_duty_bound = behaviour::current_duty_bound(
-        std::min(behaviour::kMinimumDutyBound, status.max_duty), status.max_duty,
-        params_->power.current.tether_current_limit_a, current_at);
+    // From the last cycle's D_I: two evaluations of the bound instead of twelve while D_I stays
+    // within a resolution step (supply_current.hpp).
+    status.current_duty_bound = behaviour::current_duty_bound_from(
+        last_current_duty_bound_, std::min(behaviour::kMinimumDutyBound, status.max_duty),
+        status.max_duty, params_->power.current.tether_current_limit_a, current_at);
+    last_current_duty_bound_ = status.current_duty_bound;
     status.max_duty = std::min(status.max_duty, status.current_duty_bound);
   }
   const Plan p = plan(status.max_duty);

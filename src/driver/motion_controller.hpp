@@ -113,6 +113,8 @@ class MotionController {
   // crosses its backlash gap, and the law would never leave the gap.
   std::array<double, 2> joint_velocity_{};
   MotorVector last_duty_{};
+  // The last cycle's D_I on the tether: where its search starts (it does not change the answer).
+  double last_current_duty_bound_ = 1.0;
   MotorVector load_{};
   behaviour::MeasuredDropExcess drop_excess_;  // what (4.5) leaves out of the measured drop
 };

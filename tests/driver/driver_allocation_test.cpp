@@ -102,5 +102,29 @@ TEST_F(DriverAllocationTest, TheSteadyDrivingCycleAllocatesNothing) {
   EXPECT_EQ(total, 0u) << "allocations in 400 standing cycles after the operator's timeout";
 }
 
+// The same on the tether (Field Experiment 1.1), where every cycle also searches D_I from the
+// last one (behaviour/supply_current.hpp).
+TEST_F(DriverAllocationTest, TheTethersDrivingCycleAllocatesNothing) {
+  RuntimeSettings tether = driver.runtime();
+  tether.supply = SupplyKind::kTether;
+  driver.set_runtime(tether);
+  OperatorInput input;
+  input.targets = mobility::OperatorTargets{};
+  input.targets->v1_radps = 1.0;
+  input.targets->v2_radps = 0.3;
+  input.targets->gait = mobility::Gait::kRolking;
+  input.targets->gait_speed = 0.5;
+  for (int k = 0; k < 600; ++k) cycle(&input);
+  ASSERT_EQ(driver.status().mode, DriverMode::kDriving);
+  std::size_t total = 0;
+  bool bounded = false;
+  for (int k = 0; k < 2000; ++k) {
+    total += cycle(&input);
+    bounded = bounded || driver.status().current_duty_bound < 1.0;
+  }
+  EXPECT_TRUE(bounded) << "the tether's bound never acted: the search was not exercised";
+  EXPECT_EQ(total, 0u) << "allocations in 2000 driving cycles on the tether";
+}
+
 }  // namespace
 }  // namespace marsokhod::driver

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "behaviour_test_support.hpp"
@@ -73,6 +74,65 @@ TEST(SupplyCurrent, TheBoundIsTheWholeRangeOrItsFloorAtTheEnds) {
   int calls = 0;
   current_duty_bound(0.05, 1.0, 6.0, [&](double d) { ++calls; return linear(d); });
   EXPECT_EQ(calls, 2 + 10);
+}
+
+// The warm start answers exactly what the bisection answers, from any guess, for bounds with
+// steps (the pwm counts make the real bound a staircase) and for brackets of any width; and it
+// needs two evaluations when the guess is the answer, a few when D_I moved a few cells.
+TEST(SupplyCurrent, TheWarmStartAnswersTheBisectionsDoubleFromAnyGuess) {
+  const auto staircase = [](double d) { return 1.0 + 10.0 * std::floor(d * 511.0) / 511.0; };
+  int compared = 0;
+  for (double high : {0.04, 0.3, 0.377, 0.61, 1.0}) {
+    const double low = std::min(0.05, high);
+    for (double limit : {0.5, 1.7, 3.3, 4.95, 6.0, 11.0, 12.0}) {
+      const double cold = current_duty_bound(low, high, limit, staircase);
+      for (int k = 0; k < 70; ++k) {
+        const double guess = -0.1 + 0.0173 * k;
+        EXPECT_EQ(current_duty_bound_from(guess, low, high, limit, staircase), cold)
+            << "low " << low << " high " << high << " limit " << limit << " guess " << guess;
+        ++compared;
+      }
+      int calls = 0;
+      const double warm = current_duty_bound_from(cold, low, high, limit, [&](double d) {
+        ++calls;
+        return staircase(d);
+      });
+      EXPECT_EQ(warm, cold);
+      if (cold > low && cold < high) {
+        EXPECT_EQ(calls, 2) << "high " << high << " limit " << limit;
+        // D_I moved by 3 cells either way: at most a gallop of 1, 2 and 4 cells and two halvings.
+        for (double moved : {-3.0, 3.0}) {
+          calls = 0;
+          const double guess = cold - moved * kDutyBoundResolution * 0.95;
+          if (guess <= low || guess >= high) continue;
+          EXPECT_EQ(current_duty_bound_from(guess, low, high, limit, [&](double d) {
+                      ++calls;
+                      return staircase(d);
+                    }),
+                    cold);
+          EXPECT_LE(calls, 6) << "high " << high << " limit " << limit << " moved " << moved;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(compared, 5 * 7 * 70);
+}
+
+// Where the bound dips as D grows (the tether scenario's staircase does, by 0.27 A), the warm
+// start's answer is still admitted by the bound from every guess, and it stops on the step it
+// held: from inside the dip it keeps the dip's D, from the step under the dip that step (the
+// plain bisection, from [0.05, 1], lands in the dip).
+TEST(SupplyCurrent, TheWarmStartOnADippingBoundAnswersAnAdmittedDuty) {
+  const auto dipping = [](double d) { return 1.0 + 10.0 * d - (d >= 0.52 && d < 0.53 ? 0.3 : 0.0); };
+  const double limit = 6.05;  // 10d + 1 reaches it at 0.505, and within the dip at 0.535
+  for (int k = 0; k < 70; ++k) {
+    const double guess = -0.1 + 0.0173 * k;
+    const double warm = current_duty_bound_from(guess, 0.05, 1.0, limit, dipping);
+    EXPECT_LE(dipping(warm), limit) << "guess " << guess;
+    EXPECT_GT(warm, 0.5) << "guess " << guess;
+  }
+  EXPECT_GT(current_duty_bound_from(0.525, 0.05, 1.0, limit, dipping), 0.52);
+  EXPECT_LT(current_duty_bound_from(0.505, 0.05, 1.0, limit, dipping), 0.506);
 }
 
 }  // namespace
