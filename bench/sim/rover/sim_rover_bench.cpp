@@ -13,7 +13,10 @@
 namespace marsokhod::sim {
 namespace {
 
-void run_rover_seconds(benchmark::State& state, const SimOptions& options) {
+// joint_duty: the joint motors' pwm (the wheels' is 200 of 511). At 200 the joints run to their
+// stops and push against them, which gives MuJoCo the stops' constraints to solve; at 0 they stay
+// locked, as in the bare rover, so that the two seconds simulate the same kind of motion.
+void run_rover_seconds(benchmark::State& state, const SimOptions& options, int joint_duty = 200) {
   const Params params;
   SimulatedRover rover(params, options);
   for (std::uint8_t i = 0; i < 8; ++i) {
@@ -23,7 +26,8 @@ void run_rover_seconds(benchmark::State& state, const SimOptions& options) {
   for (auto _ : state) {
     for (int k = 0; k < 64; ++k) {  // one simulated second
       for (std::uint8_t i = 0; i < 8; ++i) {
-        rover.send(protocol::encode(protocol::ControlRequest{i, false, true, 200}), t);
+        const auto pwm = static_cast<std::uint16_t>(i < kWheelCount ? 200 : joint_duty);
+        rover.send(protocol::encode(protocol::ControlRequest{i, false, true, pwm}), t);
       }
       rover.send(protocol::encode(protocol::MeasurementRequest{}), t);
       t += 1.0 / 64.0;
@@ -34,15 +38,17 @@ void run_rover_seconds(benchmark::State& state, const SimOptions& options) {
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-void BM_SimulatedRoverSecond(benchmark::State& state) { run_rover_seconds(state, SimOptions{}); }
-BENCHMARK(BM_SimulatedRoverSecond)->Unit(benchmark::kMillisecond);
+void BM_SimulatedRoverSecond(benchmark::State& state) {
+  run_rover_seconds(state, SimOptions{}, static_cast<int>(state.range(0)));
+}
+BENCHMARK(BM_SimulatedRoverSecond)->ArgName("joint_pwm")->Arg(200)->Arg(0)->Unit(benchmark::kMillisecond);
 
 void BM_BareMjStepSecond(benchmark::State& state) {
   const SimOptions options;
-  const BareRover rover = bare_rover(options.terrain, options.physics_timestep_s);
+  BareRover rover = bare_rover(options.terrain, options.physics_timestep_s);
   const int steps = static_cast<int>(std::lround(1.0 / options.physics_timestep_s));
   for (auto _ : state) {
-    for (int k = 0; k < steps; ++k) mj_step(rover.model.get(), rover.data.get());
+    for (int k = 0; k < steps; ++k) step_bare(rover);
   }
   state.counters["real_time_factor"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);

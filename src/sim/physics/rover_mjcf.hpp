@@ -25,8 +25,8 @@ namespace marsokhod::sim {
 
 // Each motor (wheels and joint shafts alike) is a velocity servo τ = kv·(ctrl − ω) clipped to
 // ±forcerange: the speed–torque line τ = (ω0 − ω)/droop with kv = 1/droop, ctrl = ω0,
-// forcerange = stall, set by RoverPhysics; the implicit integrator takes the stiff kv (≈ 33
-// N·m·s/rad) in its stride. A joint's shaft reaches its joint only through the gap and the lock
+// forcerange = stall, set by RoverPhysics, which also makes the stiff kv (≈ 33 N·m·s/rad) implicit
+// through the Euler integrator's dof damping (rover_physics.cpp, apply_motor_lines). A joint's shaft reaches its joint only through the gap and the lock
 // (joint_drive.hpp): equality constraints lock_<m> and couple_<m> and the hinges' limits, which
 // RoverPhysics switches every step.
 //
@@ -76,7 +76,7 @@ inline constexpr const char* kAccelerometerName = "imu_accel";
 inline constexpr const char* kRoverGeomClass = "rover";
 inline constexpr int kRoverGeomGroup = 1;  // the ground is group 0 (ray casts select it)
 
-// The complete model: options (timestep, the implicit integrator), the terrain, the rover with its
+// The complete model: options (timestep, the Euler integrator), the terrain, the rover with its
 // actuators, sensors and equality constraints. The heightfield's elevations are not in the XML:
 // load_rover_model() copies them into the compiled model.
 std::string rover_mjcf(const Params& params, const TerrainSpec& terrain, double timestep_s);

@@ -263,8 +263,26 @@ void RoverPhysics::Impl::apply_strapped_weights() {
     // A weight at the rim's angle φ (the wheel's hinge angle, 0 with the weight at the top):
     // gravity pulls it down the rim, τ = peak·sin φ about the hinge.
     const double peak = strapped_peak_torque_nm[wheel];
-    data->qfrc_applied[ids.shaft_dof[wheel]] =
+    shaft_applied_nm[wheel] =
         peak == 0.0 ? 0.0 : peak * std::sin(data->qpos[ids.shaft_qpos[wheel]]);
+  }
+}
+
+// Each motor's line τ = kv·(ω0 − ω), clipped at ±forcerange, is MuJoCo's actuator; its stiff
+// velocity gain kv must be integrated implicitly. The Euler integrator solves (M + h·B)·a = f with
+// B the dofs' damping, so each shaft's damping is set to its actuator's kv, and the damping force
+// −kv·ω that MuJoCo then adds to f is cancelled by +kv·ω applied (the same ω, the step's start):
+// f stays what it was, and the step is the one the implicit integrator made with the actuators'
+// derivative −kv (MuJoCo 2.2 takes it even for a clipped actuator, as here) — without the
+// Coriolis forces' derivative, which cost half of every step. The shafts have no damping of
+// their own.
+void RoverPhysics::Impl::apply_motor_lines() {
+  mjModel& m = *model;
+  for (std::size_t motor = 0; motor < kMotorCount; ++motor) {
+    const int dof = ids.shaft_dof[motor];
+    const double kv = -m.actuator_biasprm[ids.motor_actuator[motor] * mjNBIAS + 2];
+    m.dof_damping[dof] = kv;
+    data->qfrc_applied[dof] = shaft_applied_nm[motor] + kv * data->qvel[dof];
   }
 }
 
@@ -297,6 +315,7 @@ void RoverPhysics::step() {
   impl_->pin_axles_to_hands();
   impl_->apply_skid_sinkage();
   impl_->apply_soft_soil();
+  impl_->apply_motor_lines();
   mj_step(impl_->model.get(), impl_->data.get());
   impl_->pin_axles_to_hands();
 }

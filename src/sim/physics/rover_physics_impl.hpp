@@ -60,6 +60,9 @@ struct RoverPhysics::Impl {
   // Weights strapped to wheels (Procedure 4.13): peak gravity torque per wheel [N·m], 0 for none.
   std::array<double, kWheelCount> strapped_peak_torque_nm{};
   void apply_strapped_weights();
+  // The torque applied to each shaft this step besides its motor (the strapped weights).
+  std::array<double, kMotorCount> shaft_applied_nm{};
+  void apply_motor_lines();
   // Procedure 3.4's hands on the exterior axles: the angle each is turned to (nullopt: none), and
   // where the hand is now.
   std::array<std::optional<double>, 2> axle_hand_target_rad{};

@@ -29,7 +29,7 @@ TEST(RoverMjcf, CompilesOnEveryTerrainKind) {
                            TerrainKind::kHeightfield}) {
     SCOPED_TRACE(to_string(kind));
     const ModelPtr model = load_rover_model(Params{}, every_kind(kind), 0.001);
-    EXPECT_EQ(model->opt.integrator, mjINT_IMPLICIT);
+    EXPECT_EQ(model->opt.integrator, mjINT_EULER);
     EXPECT_DOUBLE_EQ(model->opt.timestep, 0.001);
     EXPECT_EQ(model->nu, static_cast<int>(kMotorCount));
   }
