@@ -116,6 +116,7 @@ function showLinkState() {
 link.on('state', showLinkState);
 link.on('hello', ({ calibration: c, velocityLimits }) => {
   velocity.setLimits(velocityLimits);
+  view.clearSoil();  // a reconnect may find the rover on rigid ground: no ruts from before
   $('calibration').textContent = c && c.file
     ? `calibration: ${c.file} (${c.procedures.join(', ') || 'no procedures'})`
     : 'calibration: none (nominal configuration)';

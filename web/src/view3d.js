@@ -445,6 +445,14 @@ export class RoverView {
   }
 
   /**
+   * A new connection (the server may run on other ground): the last ruts go until a patch comes.
+   */
+  clearSoil() {
+    if (this.soil) this.soil.visible = false;
+    if (this.container) this.container.dataset.soil = 'none';
+  }
+
+  /**
    * The ruts: the soil patch the simulator sends about once a second replaces the last one.
    * @param {import('./protocol').SoilPatch | undefined} patch
    */

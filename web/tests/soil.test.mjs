@@ -105,4 +105,19 @@ test('on soft sand the status carries the ruts and the 3-D view draws them', asy
   assert.ok(darker >= 200, `only ${darker} pixels show a rut darker than the ground`);
   await screenshot(page, 'console-soft-sand-ruts.png');
   assert.deepEqual(page.problems, []);
+  // A reconnect takes the old ruts away (the server could now run on rigid ground), and the next
+  // patch brings them back: the view's soil goes 'none', then 80x50 again.
+  await page.evaluate(() => {
+    const container = document.getElementById('view3d');
+    window.soilShown = [];
+    new MutationObserver(() => window.soilShown.push(container.dataset.soil))
+      .observe(container, { attributes: true, attributeFilter: ['data-soil'] });
+    window.marsokhod.link.socket.close();
+  });
+  await page.waitForFunction(() => {
+    const shown = window.soilShown;
+    const cleared = shown.indexOf('none');
+    return cleared >= 0 && shown.indexOf('80x50', cleared) > cleared;
+  }, null, { timeout: TIMEOUT_MS });
+  assert.equal(await page.evaluate(() => window.marsokhod.view.soil.visible), true);
 });
