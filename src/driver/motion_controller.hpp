@@ -113,7 +113,9 @@ class MotionController {
   // crosses its backlash gap, and the law would never leave the gap.
   std::array<double, 2> joint_velocity_{};
   MotorVector last_duty_{};
-  // The last cycle's D_I on the tether: where its search starts (it does not change the answer).
+  // The last cycle's D_I on the tether: where its search starts. The same answer as a fresh
+  // bisection where the stall bound grows with D; where it dips, an admitted D that may differ
+  // from the bisection's and depends on the cycles before (supply_current.hpp).
   double last_current_duty_bound_ = 1.0;
   MotorVector load_{};
   behaviour::MeasuredDropExcess drop_excess_;  // what (4.5) leaves out of the measured drop

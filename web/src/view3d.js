@@ -450,6 +450,7 @@ export class RoverView {
   clearSoil() {
     if (this.soil) this.soil.visible = false;
     if (this.container) this.container.dataset.soil = 'none';
+    this.dirty = true;
   }
 
   /**

@@ -41,7 +41,11 @@ void run_rover_seconds(benchmark::State& state, const SimOptions& options, int j
 void BM_SimulatedRoverSecond(benchmark::State& state) {
   run_rover_seconds(state, SimOptions{}, static_cast<int>(state.range(0)));
 }
-BENCHMARK(BM_SimulatedRoverSecond)->ArgName("joint_pwm")->Arg(200)->Arg(0)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SimulatedRoverSecond)
+    ->ArgName("joint_pwm")
+    ->Arg(200)
+    ->Arg(0)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_BareMjStepSecond(benchmark::State& state) {
   const SimOptions options;

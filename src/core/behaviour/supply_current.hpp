@@ -17,13 +17,15 @@
 //
 // The duty bound: D_I, the largest D of (5.5) whose duties — the motions of (5.4) scaled under D,
 // the load distribution, (4.3)'s inverse, then chapter 3.2's slew rule from the duties sent last —
-// keep the bound within the tether's limit; D = min(D of (6.3), D_I). The bound grows with every
-// |d|, so bisection finds D_I; acting through (5.5) it scales every motion alike (κ), so the wheels
-// and the joints keep the kinematics of (5.4) — lowering some duties alone would set wheels
-// against each other, which draws more current, not less. Six wheels at one duty d on 24 V, the
+// keep the bound within the tether's limit; D = min(D of (6.3), D_I). The bound mostly grows with
+// D (not always: below), so bisection finds D_I; acting through (5.5) it scales every motion
+// alike (κ), so the wheels and the joints keep the kinematics of (5.4) — lowering some duties
+// alone would set wheels against each other, which draws more current, not less. Six wheels at one duty d on 24 V, the
 // joints still: 6·(0.12 + d·1.74·(24d − 1)/7.5) + 1.05 ≤ 6 A gives d ≤ 0.377 (the shipped
 // constants): on the tether the rover drives at about 0.38 of full speed, as the tether allows.
 #pragma once
+
+#include <cmath>
 
 #include "core/params.hpp"
 
@@ -79,38 +81,60 @@ inline DutyBoundCell duty_bound_cell(double low, double high, double x) {
   return cell;
 }
 
+// The gallop's doublings before it jumps to the bracket's end: 1, 2, 4 and 8 cells.
+inline constexpr int kDutyBoundGallops = 4;
+
 // The same search started from a guess (the last cycle's D_I): it looks at the cell that holds
-// the guess, gallops up or down over the cells (1, 2, 4 … cells) to an admitted D below one over
-// the limit, then halves between them, always on the bisection's own cell ends. Two evaluations
-// of the bound when D_I stays in its cell, about 2 + 2·log2(k) when it moved k cells, instead of
-// twelve. A cell whose lower end is admitted and upper end is not is the answer. Where the bound
-// is non-decreasing there is only one such cell, the one the bisection ends in, so the answer is
-// the bisection's own double. The real bound is a staircase of pwm counts, and it can dip as D
-// grows (by 0.27 A over 1/1000 of D on `tether-current-bound`, seed 3, at D ≈ 0.525; which
-// motor's duty turns back there is not pinned down); there the two may stop in different cells,
-// each an admitted D whose next cell end is over the limit.
+// the guess, gallops up or down over the cells (1, 2, 4, 8 cells, then the bracket's end) to an
+// admitted D below one over the limit, then halves between them, always on the bisection's own
+// cell ends. Two evaluations of the bound when D_I stays in its cell, a few when it moved a few
+// cells, at most 18 (a jump across the bracket) against the bisection's fixed 12; one when the
+// guess lies in the last cell and the bound does not bind. A cell whose lower end is admitted and
+// upper end is not is the answer. Where the bound is non-decreasing there is only one such cell,
+// the one the bisection ends in, so the answer is the bisection's own double. The real bound is a
+// staircase of pwm counts, and it can dip as D grows (by 0.27 A over 1/1000 of D on
+// `tether-current-bound`, seed 3, at D ≈ 0.525; which motor's duty turns back there is not pinned
+// down); there the two may stop in different cells, each an admitted D whose next cell end is over
+// the limit, and the warm start's answer depends on where it started. A bracket that is not
+// finite and ordered goes to the plain bisection.
 template <class CurrentAt>
 double current_duty_bound_from(double guess, double low, double high, double limit_a,
                                CurrentAt&& current_at) {
+  if (!(std::isfinite(low) && std::isfinite(high) && low <= high)) {
+    return current_duty_bound(low, high, limit_a, current_at);
+  }
   const auto admitted = [&](double duty) { return current_at(duty) <= limit_a; };
-  const DutyBoundCell start = duty_bound_cell(low, high, guess);
-  const double step = start.high - start.low;
+  int high_known = -1;  // the verdict on `high`, asked at most once: -1 not yet, 0 over, 1 admitted
+  const auto high_admitted = [&] {
+    if (high_known < 0) high_known = admitted(high) ? 1 : 0;
+    return high_known == 1;
+  };
   const auto cell_at = [&](double x) { return duty_bound_cell(low, high, x); };
-  double ok = 0.0, over = 0.0;  // an admitted cell end below one over the limit
+  const DutyBoundCell start = cell_at(guess);
+  const double step = start.high - start.low;
+  // In the last cell the answer may be `high` itself: ask it first.
+  if (start.high >= high && high_admitted()) return high;
+  double ok = low, over = high;  // an admitted cell end below one over the limit
   if (admitted(start.low)) {
     ok = start.low;
-    over = start.high;
-    for (double cells = 1.0;; cells *= 2.0) {
+    over = start.high;  // 1 cell above
+    for (int gallop = 1;; ++gallop) {
+      if (over >= high) {
+        if (high_admitted()) return high;
+        break;
+      }
       if (!admitted(over)) break;
-      if (over >= high) return high;
       ok = over;
-      over = cell_at(ok + (cells * 2.0 - 0.5) * step).high;
+      over = gallop == kDutyBoundGallops ? high
+                                         : cell_at(ok + ((1 << gallop) - 0.5) * step).high;
     }
   } else {
     if (start.low <= low) return low;
     over = start.low;
-    for (double cells = 1.0;; cells *= 2.0) {
-      const double below = cell_at(over - (cells - 0.5) * step).low;
+    for (int gallop = 0;; ++gallop) {
+      const double below = gallop == kDutyBoundGallops
+                               ? low
+                               : cell_at(over - ((1 << gallop) - 0.5) * step).low;
       if (admitted(below)) {
         ok = below;
         break;
@@ -119,8 +143,9 @@ double current_duty_bound_from(double guess, double low, double high, double lim
       over = below;
     }
   }
-  // Halve the cells between ok and over until they are neighbours.
-  for (;;) {
+  // Halve the cells between ok and over until they are neighbours (about log2 of their number, at
+  // most 11 for the bracket's 2^10 cells; the cap only guards against arithmetic not foreseen).
+  for (int halving = 0; halving < 64; ++halving) {
     const DutyBoundCell middle = cell_at(0.5 * (ok + over));
     const double probe = middle.low > ok ? middle.low : middle.high;
     if (probe >= over) return ok;
@@ -130,6 +155,7 @@ double current_duty_bound_from(double guess, double low, double high, double lim
       over = probe;
     }
   }
+  return ok;
 }
 
 }  // namespace marsokhod::behaviour

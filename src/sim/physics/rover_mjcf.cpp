@@ -25,14 +25,14 @@ std::string vec3(double x, double y, double z) {
 void write_header(XmlWriter& xml, const Params& params, const TerrainSpec& terrain,
                   double timestep_s) {
   xml.leaf("compiler", {{"angle", "radian"}});
-  // The motors' speed–torque lines (1/droop ≈ 33 N·m·s/rad, the joint lock's brake 1e4) are stiff
-  // velocity feedback that must be integrated implicitly. MuJoCo's Euler integrator is implicit in
-  // dof damping, and RoverPhysics moves each line's velocity gain into its shaft's damping every
-  // step (rover_physics.cpp, apply_motor_lines): the same implicit step as the "implicit"
-  // integrator gave the actuators, without the velocity derivative of the Coriolis forces, which
-  // cost half the step (BENCHMARKS.md). MuJoCo's friction is soft: a held rover creeps down a
-  // slope; the elliptic cone with impratio 10 cuts the creep on 15° to 0.1 mm/s (1 mm/s with the
-  // defaults).
+  // The motors' speed–torque lines are velocity feedback integrated implicitly: it must be for the
+  // joint lock's brake (10⁴ N·m·s/rad), and for the lines themselves (1/droop ≈ 33) it keeps the
+  // numbers of the implicit integrator. MuJoCo's Euler integrator is implicit in dof damping, and
+  // RoverPhysics moves each line's velocity gain into its shaft's damping every step
+  // (rover_physics.cpp, apply_motor_lines): the "implicit" integrator's step without the velocity
+  // derivative of the Coriolis forces, which cost half the step (BENCHMARKS.md). MuJoCo's
+  // friction is soft: a held rover creeps down a slope; the elliptic cone with impratio 10 cuts
+  // the creep on 15° to 0.1 mm/s (1 mm/s with the defaults).
   xml.leaf("option", {{"timestep", xml_number(timestep_s)},
                       {"integrator", "Euler"},
                       {"cone", "elliptic"},

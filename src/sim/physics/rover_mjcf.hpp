@@ -25,10 +25,10 @@ namespace marsokhod::sim {
 
 // Each motor (wheels and joint shafts alike) is a velocity servo τ = kv·(ctrl − ω) clipped to
 // ±forcerange: the speed–torque line τ = (ω0 − ω)/droop with kv = 1/droop, ctrl = ω0,
-// forcerange = stall, set by RoverPhysics, which also makes the stiff kv (≈ 33 N·m·s/rad) implicit
-// through the Euler integrator's dof damping (rover_physics.cpp, apply_motor_lines). A joint's shaft reaches its joint only through the gap and the lock
-// (joint_drive.hpp): equality constraints lock_<m> and couple_<m> and the hinges' limits, which
-// RoverPhysics switches every step.
+// forcerange = stall, set by RoverPhysics, which also makes kv (≈ 33 N·m·s/rad) implicit through
+// the Euler integrator's dof damping (rover_physics.cpp, apply_motor_lines). A joint's shaft
+// reaches its joint only through the gap and the lock (joint_drive.hpp): equality constraints
+// lock_<m> and couple_<m> and the hinges' limits, which RoverPhysics switches every step.
 //
 // Mass budget of the lab rover without the science payload of chapter 2 (which weighed 100 kg
 // and more): motors, gears and batteries sit in the wheels.

@@ -73,6 +73,9 @@ RoverPhysics::Impl::Impl(const Params& params_in, const TerrainSpec& terrain, do
   check_initial_joint(params, kFrontJoint);
   check_initial_joint(params, kRearJoint);
   resolve_ids();
+  for (std::size_t motor = 0; motor < kMotorCount; ++motor) {
+    shaft_own_damping[motor] = model->dof_damping[ids.shaft_dof[motor]];
+  }
   start_joints();
   place_on_terrain(terrain);
   resolve_terrain_materials(terrain);
@@ -268,20 +271,24 @@ void RoverPhysics::Impl::apply_strapped_weights() {
   }
 }
 
-// Each motor's line τ = kv·(ω0 − ω), clipped at ±forcerange, is MuJoCo's actuator; its stiff
-// velocity gain kv must be integrated implicitly. The Euler integrator solves (M + h·B)·a = f with
-// B the dofs' damping, so each shaft's damping is set to its actuator's kv, and the damping force
-// −kv·ω that MuJoCo then adds to f is cancelled by +kv·ω applied (the same ω, the step's start):
-// f stays what it was, and the step is the one the implicit integrator made with the actuators'
-// derivative −kv (MuJoCo 2.2 takes it even for a clipped actuator, as here) — without the
-// Coriolis forces' derivative, which cost half of every step. The shafts have no damping of
-// their own.
+// Each motor's line τ = kv·(ω0 − ω), clipped at ±forcerange, is MuJoCo's actuator, and its
+// velocity gain kv is integrated implicitly, as MuJoCo's "implicit" integrator did. It must be for
+// the joint lock's brake (kv = 10⁴ on 0.42 kg m²: h·kv/I ≈ 24 at 1 ms, far past an explicit
+// step's limit of 2); the lines' own 1/droop ≈ 33 N·m·s/rad (h·kv/I ≈ 0.07) would be stable
+// either way, and implicit they keep the numbers the scenarios were written on. The Euler
+// integrator solves (M + h·B)·a = f with B the dofs' damping, so each shaft's damping is set to
+// its own plus its actuator's kv, and the damping force −kv·ω that MuJoCo then adds to f is
+// cancelled by +kv·ω applied (the same ω, the step's start): f stays what it was, and the step
+// is the one the implicit integrator made with the actuators' derivative −kv (MuJoCo 2.2 takes it
+// even for a clipped actuator, as here) — without the Coriolis forces' derivative, which cost
+// half of every step. Also before each mj_forward outside a step, so that its accelerations see
+// the same forces.
 void RoverPhysics::Impl::apply_motor_lines() {
   mjModel& m = *model;
   for (std::size_t motor = 0; motor < kMotorCount; ++motor) {
     const int dof = ids.shaft_dof[motor];
     const double kv = -m.actuator_biasprm[ids.motor_actuator[motor] * mjNBIAS + 2];
-    m.dof_damping[dof] = kv;
+    m.dof_damping[dof] = shaft_own_damping[motor] + kv;
     data->qfrc_applied[dof] = shaft_applied_nm[motor] + kv * data->qvel[dof];
   }
 }
@@ -342,6 +349,7 @@ void RoverPhysics::place_on_stand(double roll_rad, double pitch_rad) {
   for (int i = 0; i < 4; ++i) d.qpos[ids.free_qpos + 3 + i] = quat[i];
   for (int i = 0; i < 6; ++i) d.qvel[ids.free_dof + i] = 0.0;
   m.eq_active[ids.stand_weld] = 1;
+  impl_->apply_motor_lines();
   mj_forward(&m, &d);
 }
 
@@ -364,6 +372,7 @@ void RoverPhysics::place_on_ground() {
       impl_->params.geometry.wheel_radius_m + kStartClearanceM;
   d.qpos[ids.free_qpos] = x;
   d.qpos[ids.free_qpos + 1] = y;
+  impl_->apply_motor_lines();
   mj_forward(&m, &d);
 }
 

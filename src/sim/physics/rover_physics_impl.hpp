@@ -60,8 +60,10 @@ struct RoverPhysics::Impl {
   // Weights strapped to wheels (Procedure 4.13): peak gravity torque per wheel [N·m], 0 for none.
   std::array<double, kWheelCount> strapped_peak_torque_nm{};
   void apply_strapped_weights();
-  // The torque applied to each shaft this step besides its motor (the strapped weights).
+  // The torque applied to each shaft this step besides its motor (the strapped weights), and
+  // each shaft's own damping in the model (apply_motor_lines adds its motor's kv to it).
   std::array<double, kMotorCount> shaft_applied_nm{};
+  std::array<double, kMotorCount> shaft_own_damping{};
   void apply_motor_lines();
   // Procedure 3.4's hands on the exterior axles: the angle each is turned to (nullopt: none), and
   // where the hand is now.

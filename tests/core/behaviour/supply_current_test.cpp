@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "behaviour_test_support.hpp"
 
@@ -86,10 +87,19 @@ TEST(SupplyCurrent, TheWarmStartAnswersTheBisectionsDoubleFromAnyGuess) {
     const double low = std::min(0.05, high);
     for (double limit : {0.5, 1.7, 3.3, 4.95, 6.0, 11.0, 12.0}) {
       const double cold = current_duty_bound(low, high, limit, staircase);
-      for (int k = 0; k < 70; ++k) {
-        const double guess = -0.1 + 0.0173 * k;
-        EXPECT_EQ(current_duty_bound_from(guess, low, high, limit, staircase), cold)
+      for (int k = 0; k < 700; ++k) {  // about every cell of [0.05, 1]'s 1024, and beyond it
+        const double guess = -0.1 + 0.00173 * k;
+        int calls = 0;
+        EXPECT_EQ(current_duty_bound_from(guess, low, high, limit,
+                                          [&](double d) {
+                                            ++calls;
+                                            return staircase(d);
+                                          }),
+                  cold)
             << "low " << low << " high " << high << " limit " << limit << " guess " << guess;
+        // A jump across the bracket: high, the start cell, 4 gallops, the end, 11 halvings of the
+        // cells between (the probe takes a cell end beside the middle, not the middle).
+        EXPECT_LE(calls, 18);
         ++compared;
       }
       int calls = 0;
@@ -115,7 +125,7 @@ TEST(SupplyCurrent, TheWarmStartAnswersTheBisectionsDoubleFromAnyGuess) {
       }
     }
   }
-  EXPECT_EQ(compared, 5 * 7 * 70);
+  EXPECT_EQ(compared, 5 * 7 * 700);
 }
 
 // Where the bound dips as D grows (the tether scenario's staircase does, by 0.27 A), the warm
@@ -133,6 +143,25 @@ TEST(SupplyCurrent, TheWarmStartOnADippingBoundAnswersAnAdmittedDuty) {
   }
   EXPECT_GT(current_duty_bound_from(0.525, 0.05, 1.0, limit, dipping), 0.52);
   EXPECT_LT(current_duty_bound_from(0.505, 0.05, 1.0, limit, dipping), 0.506);
+}
+
+// Where the bound does not bind and the guess lies in the last cell, one evaluation (of `high`).
+// A bracket that is not finite goes to the bisection and ends (the gallop alone would run on).
+TEST(SupplyCurrent, TheWarmStartAsksHighOnceAndEndsOnABadBracket) {
+  const auto linear = [](double d) { return 1.0 + 10.0 * d; };
+  int calls = 0;
+  EXPECT_EQ(current_duty_bound_from(0.4, 0.05, 0.4, 6.0,
+                                    [&](double d) {
+                                      ++calls;
+                                      return linear(d);
+                                    }),
+            0.4);
+  EXPECT_EQ(calls, 1);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // The bisection with a NaN top: NaN is not admitted, the loop's width test fails, `low`.
+  EXPECT_EQ(current_duty_bound_from(0.3, 0.05, nan, 6.0, linear), 0.05);
+  EXPECT_EQ(current_duty_bound_from(nan, 0.05, 1.0, 6.0, linear),
+            current_duty_bound(0.05, 1.0, 6.0, linear));
 }
 
 }  // namespace
