@@ -81,14 +81,14 @@ inline DutyBoundCell duty_bound_cell(double low, double high, double x) {
   return cell;
 }
 
-// The gallop's doublings before it jumps to the bracket's end: 1, 2, 4 and 8 cells.
-inline constexpr int kDutyBoundGallops = 4;
+// The gallop's doublings before it jumps to the bracket's end: 1, 2, 4, 8 and 16 cells.
+inline constexpr int kDutyBoundGallops = 5;
 
 // The same search started from a guess (the last cycle's D_I): it looks at the cell that holds
-// the guess, gallops up or down over the cells (1, 2, 4, 8 cells, then the bracket's end) to an
+// the guess, gallops up or down over the cells (1, 2, 4, 8, 16, then the bracket's end) to an
 // admitted D below one over the limit, then halves between them, always on the bisection's own
 // cell ends. Two evaluations of the bound when D_I stays in its cell, a few when it moved a few
-// cells, at most 18 (a jump across the bracket) against the bisection's fixed 12; one when the
+// cells, at most 19 (a jump across the bracket) against the bisection's fixed 12; one when the
 // guess lies in the last cell and the bound does not bind. A cell whose lower end is admitted and
 // upper end is not is the answer. Where the bound is non-decreasing there is only one such cell,
 // the one the bisection ends in, so the answer is the bisection's own double. The real bound is a
