@@ -34,12 +34,7 @@ void BM_DriverStep(benchmark::State& state) {
     testing::ScriptedRover rover;
     std::vector<protocol::CanFrame> inbox;
     double t = 0.0;
-    OperatorInput input;
-    input.targets = mobility::OperatorTargets{};
-    input.targets->v1_radps = 1.0;
-    input.targets->v2_radps = 0.3;
-    input.targets->gait = mobility::Gait::kRolking;
-    input.targets->gait_speed = 0.5;
+    const OperatorInput input = testing::driving_with_rolking();
     std::vector<double> step_ns;
     step_ns.reserve(kCycles);
     double total_s = 0.0;

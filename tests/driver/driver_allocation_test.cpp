@@ -77,12 +77,7 @@ TEST_F(DriverAllocationTest, TheCounterSeesAnAllocation) {
 // Driving forward and turning with rolking running, the operator's targets every cycle (the
 // cycle of driver_bench's BM_DriverStep): every stage busy, start-up done.
 TEST_F(DriverAllocationTest, TheSteadyDrivingCycleAllocatesNothing) {
-  OperatorInput input;
-  input.targets = mobility::OperatorTargets{};
-  input.targets->v1_radps = 1.0;
-  input.targets->v2_radps = 0.3;
-  input.targets->gait = mobility::Gait::kRolking;
-  input.targets->gait_speed = 0.5;
+  const OperatorInput input = testing::driving_with_rolking();
   for (int k = 0; k < 600; ++k) cycle(&input);  // start-up (≈ 2 s) and the first strides
   ASSERT_EQ(driver.status().mode, DriverMode::kDriving);
   std::size_t total = 0;
@@ -108,12 +103,7 @@ TEST_F(DriverAllocationTest, TheTethersDrivingCycleAllocatesNothing) {
   RuntimeSettings tether = driver.runtime();
   tether.supply = SupplyKind::kTether;
   driver.set_runtime(tether);
-  OperatorInput input;
-  input.targets = mobility::OperatorTargets{};
-  input.targets->v1_radps = 1.0;
-  input.targets->v2_radps = 0.3;
-  input.targets->gait = mobility::Gait::kRolking;
-  input.targets->gait_speed = 0.5;
+  const OperatorInput input = testing::driving_with_rolking();
   for (int k = 0; k < 600; ++k) cycle(&input);
   ASSERT_EQ(driver.status().mode, DriverMode::kDriving);
   std::size_t total = 0;

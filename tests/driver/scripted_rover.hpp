@@ -14,6 +14,7 @@
 #include "core/adaptation/no_load_velocity.hpp"
 #include "core/params.hpp"
 #include "core/protocol/codec.hpp"
+#include "driver/operator_commands.hpp"
 
 namespace marsokhod::driver::testing {
 
@@ -112,5 +113,17 @@ class ScriptedRover {
             static_cast<std::uint16_t>(std::lround(vel))};
   }
 };
+
+// The operator's drive of driver_bench's BM_DriverStep and the allocation test: forward and
+// turning with rolking running, so that every stage of the cycle is busy.
+inline OperatorInput driving_with_rolking() {
+  OperatorInput input;
+  input.targets = mobility::OperatorTargets{};
+  input.targets->v1_radps = 1.0;
+  input.targets->v2_radps = 0.3;
+  input.targets->gait = mobility::Gait::kRolking;
+  input.targets->gait_speed = 0.5;
+  return input;
+}
 
 }  // namespace marsokhod::driver::testing
