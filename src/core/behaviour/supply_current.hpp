@@ -20,9 +20,10 @@
 // keep the bound within the tether's limit; D = min(D of (6.3), D_I). The bound mostly grows with
 // D (not always: below), so bisection finds D_I; acting through (5.5) it scales every motion
 // alike (κ), so the wheels and the joints keep the kinematics of (5.4) — lowering some duties
-// alone would set wheels against each other, which draws more current, not less. Six wheels at one duty d on 24 V, the
-// joints still: 6·(0.12 + d·1.74·(24d − 1)/7.5) + 1.05 ≤ 6 A gives d ≤ 0.377 (the shipped
-// constants): on the tether the rover drives at about 0.38 of full speed, as the tether allows.
+// alone would set wheels against each other, which draws more current, not less. Six wheels at
+// one duty d on 24 V, the joints still: 6·(0.12 + d·1.74·(24d − 1)/7.5) + 1.05 ≤ 6 A gives
+// d ≤ 0.377 (the shipped constants): on the tether the rover drives at about 0.38 of full speed,
+// as the tether allows.
 #pragma once
 
 #include <cmath>
@@ -92,11 +93,12 @@ inline constexpr int kDutyBoundGallops = 5;
 // guess lies in the last cell and the bound does not bind. A cell whose lower end is admitted and
 // upper end is not is the answer. Where the bound is non-decreasing there is only one such cell,
 // the one the bisection ends in, so the answer is the bisection's own double. The real bound is a
-// staircase of pwm counts, and it can dip as D grows (by 0.27 A over 1/1000 of D on
-// `tether-current-bound`, seed 3, at D ≈ 0.525; which motor's duty turns back there is not pinned
-// down); there the two may stop in different cells, each an admitted D whose next cell end is over
-// the limit, and the warm start's answer depends on where it started. A bracket that is not
-// finite and ordered goes to the plain bisection.
+// staircase of pwm counts, and it can dip as D grows: by 0.3 A on `tether-current-bound`, seed 3,
+// at D ≈ 0.51–0.55, where the rear wheels' summed motion (driving and rolking's strokes, which
+// (5.5) scales differently) passes through zero — their duties go from −1 count to 0, and a bridge
+// at d = 0 draws nothing. There the two may stop in different cells, each an admitted D whose next
+// cell end is over the limit, and the warm start's answer depends on where it started. A bracket
+// that is not finite and ordered goes to the plain bisection.
 template <class CurrentAt>
 double current_duty_bound_from(double guess, double low, double high, double limit_a,
                                CurrentAt&& current_at) {

@@ -128,12 +128,14 @@ TEST(SupplyCurrent, TheWarmStartAnswersTheBisectionsDoubleFromAnyGuess) {
   EXPECT_EQ(compared, 5 * 7 * 700);
 }
 
-// Where the bound dips as D grows (the tether scenario's staircase does, by 0.27 A), the warm
-// start's answer is still admitted by the bound from every guess, and it stops on the step it
-// held: from inside the dip it keeps the dip's D, from the step under the dip that step (the
-// plain bisection, from [0.05, 1], lands in the dip).
+// Where the bound dips as D grows (the tether scenario's does, by 0.3 A, where two wheels' duties
+// pass through 0), the warm start's answer is still admitted by the bound from every guess, and it
+// stops on the step it held: from inside the dip it keeps the dip's D, from the step under the dip
+// that step (the plain bisection, from [0.05, 1], lands in the dip).
 TEST(SupplyCurrent, TheWarmStartOnADippingBoundAnswersAnAdmittedDuty) {
-  const auto dipping = [](double d) { return 1.0 + 10.0 * d - (d >= 0.52 && d < 0.53 ? 0.3 : 0.0); };
+  const auto dipping = [](double d) {
+    return 1.0 + 10.0 * d - (d >= 0.52 && d < 0.53 ? 0.3 : 0.0);
+  };
   const double limit = 6.05;  // 10d + 1 reaches it at 0.505, and within the dip at 0.535
   for (int k = 0; k < 70; ++k) {
     const double guess = -0.1 + 0.0173 * k;
