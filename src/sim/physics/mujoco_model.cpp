@@ -1,5 +1,6 @@
 #include "sim/physics/mujoco_model.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <stdexcept>
@@ -28,6 +29,17 @@ void copy_heightfield(mjModel& model, const Heightfield& field) {
       data[row * columns + column] = static_cast<float>(field.image.at(rows - 1 - row, column));
     }
   }
+}
+
+// The soil's field at the initial level everywhere (terrain_mjcf.hpp): kSoilFieldBelowM above
+// its elevation 0.
+void level_soil_field(mjModel& model) {
+  const int id = require_id(model, mjOBJ_HFIELD, kSoilFieldName);
+  float* data = model.hfield_data + model.hfield_adr[id];
+  const auto count = static_cast<std::size_t>(model.hfield_nrow[id]) *
+                     static_cast<std::size_t>(model.hfield_ncol[id]);
+  std::fill(data, data + count,
+            static_cast<float>(kSoilFieldBelowM / (kSoilFieldBelowM + kSoilFieldAboveM)));
 }
 
 }  // namespace
@@ -59,6 +71,7 @@ ModelPtr load_mjcf(const std::string& xml) {
 ModelPtr load_rover_model(const Params& params, const TerrainSpec& terrain, double timestep_s) {
   ModelPtr model = load_mjcf(rover_mjcf(params, terrain, timestep_s));
   if (terrain.kind == TerrainKind::kHeightfield) copy_heightfield(*model, terrain.heightfield);
+  if (terrain.ground.soil) level_soil_field(*model);
   return model;
 }
 

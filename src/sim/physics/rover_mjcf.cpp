@@ -15,6 +15,7 @@ using Attributes = XmlWriter::Attributes;
 // Contact buffers: a wheel on a plane makes a few contacts, on a heightfield up to MuJoCo's 50
 // per geom pair; each contact takes at most 6 constraint rows (condim 6, elliptic cone).
 int contact_capacity(const TerrainSpec& terrain) {
+  // On soft soil the wheels make none: the 120 are the chassis' on the soil's field.
   return terrain.kind == TerrainKind::kHeightfield ? 400 : 120;
 }
 

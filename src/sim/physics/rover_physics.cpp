@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -81,6 +82,7 @@ RoverPhysics::Impl::Impl(const Params& params_in, const TerrainSpec& terrain, do
   resolve_terrain_materials(terrain);
   build_soft_soil(terrain);
   mj_forward(model.get(), data.get());
+  if (soft_soil) update_soil_field();  // with the chassis where it now stands
 }
 
 void RoverPhysics::Impl::resolve_ids() {
@@ -380,8 +382,25 @@ const soil::SoftSoil* RoverPhysics::soft_soil() const {
   return impl_->soft_soil ? &*impl_->soft_soil : nullptr;
 }
 
+soil::SoftSoil* RoverPhysics::soft_soil() {
+  return impl_->soft_soil ? &*impl_->soft_soil : nullptr;
+}
+
+double RoverPhysics::terrain_height_m(double x_m, double y_m) const {
+  std::array<mjtByte, mjNGROUP> terrain_only{};
+  terrain_only[0] = 1;
+  const mjtNum start[3] = {x_m, y_m, kRayStartHeightM};
+  const mjtNum down[3] = {0.0, 0.0, -1.0};
+  int geom = -1;
+  const mjtNum distance = mj_ray(impl_->model.get(), impl_->data.get(), start, down,
+                                 terrain_only.data(), 1, -1, &geom);
+  return distance >= 0.0 ? kRayStartHeightM - distance : std::numeric_limits<double>::quiet_NaN();
+}
+
 void RoverPhysics::level_soil() {
-  if (impl_->soft_soil) impl_->soft_soil->level();
+  if (!impl_->soft_soil) return;
+  impl_->soft_soil->level();
+  impl_->update_soil_field();
 }
 
 bool RoverPhysics::on_stand() const { return impl_->model->eq_active[impl_->ids.stand_weld] != 0; }

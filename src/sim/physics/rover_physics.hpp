@@ -108,6 +108,12 @@ class RoverPhysics {
   void level_soil();
   // The soft soil under the wheels (its grid: ruts, volumes), nullptr on rigid ground.
   const soil::SoftSoil* soft_soil() const;
+  // The same, to shape the soil (a test's mound or trench, SoilGrid::set_cell_surface_m): the
+  // height field the chassis meets takes the change within 10 ms (rover_soft_soil.cpp).
+  soil::SoftSoil* soft_soil();
+  // The height of the terrain's geoms under (x, y) — the ground, the soft soil's height field,
+  // the obstacles; what the chassis meets — by a vertical ray from 1 km up; NaN where it misses.
+  double terrain_height_m(double x_m, double y_m) const;
   // A weight strapped to a wheel's rim (Procedure 4.13): a gravity torque peak·sin φ on the
   // wheel's hinge, φ its angle (0: the weight at the top). 0 removes it. The stand keeps the
   // chassis level, so φ is measured from the vertical.

@@ -5,16 +5,21 @@
 // mass. The kinematics are those MuJoCo computed at the start of the last step, one step (1 ms)
 // old, as the skid sinkage's (rover_sinkage.cpp).
 //
-// The grid: 2 cm cells from x = −3 m to 9 m and y = −3 m to 3 m around the start, level with the
-// ground plane (flat, or x·tan(slope) on a slope). Beyond it the edge cells' heights continue.
+// The grid (kSoftSoilGrid, terrain_mjcf.hpp): 2 cm cells from x = −3 m to 9 m and y = −3 m to 3 m
+// around the start, at the ground's initial level (flat, or x·tan(slope) on a slope). Beyond it
+// the edge cells' heights continue. Every kSoilFieldPeriodSteps steps the cells that changed are
+// copied into the MuJoCo height field the chassis meets (terrain_mjcf.hpp).
 // Blades: mirror-symmetric across the rover's middle — the left wheels right-handed, the right
 // wheels left-handed (docs/simulator.md), inclined at the geometry's blade_inclination_rad (i);
 // rim radius = wheel radius − 1 cm of blade.
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sim/physics/chassis_geometry.hpp"
 #include "sim/physics/rover_mjcf.hpp"
 #include "sim/physics/rover_physics_impl.hpp"
+#include "sim/physics/terrain_mjcf.hpp"
 
 namespace marsokhod::sim {
 namespace {
@@ -23,7 +28,12 @@ using soil::operator+;
 using soil::operator-;
 
 constexpr double kBladeHeightM = 0.010;  // chapter 3.1: 0.125 m with blades, 0.115 on granules
-constexpr soil::GridSpec kSoilGrid{-3.0, -3.0, 0.02, 600, 300};
+// The field follows the grid every 10 ms: ruts grow by well under a millimetre in that time, and
+// copying the changed cells every step would cost a tenth of the soil's own work.
+constexpr int kSoilFieldPeriodSteps = 10;
+// The field is met while the chassis comes this close to the soil (update_soil_field).
+constexpr double kSoilFieldReachM = 0.02;
+constexpr double kSoilFieldWatchM = 0.8;  // the rover's half-length and more, from its centre
 // A wheel whose contact is switched off (set_wheel_contact) is shown to the soil this high up.
 constexpr double kLiftedM = 10.0;
 
@@ -46,7 +56,117 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   }
   const double slope = terrain.kind == TerrainKind::kSlope ? std::tan(terrain.slope_rad) : 0.0;
   soft_soil.emplace(
-      *terrain.ground.soil, kSoilGrid, [slope](double x_m, double) { return x_m * slope; }, wheels);
+      *terrain.ground.soil, kSoftSoilGrid, [slope](double x_m, double) { return x_m * slope; },
+      wheels);
+  soil_field = require_id(*model, mjOBJ_HFIELD, kSoilFieldName);
+  soil_field_geom = require_id(*model, mjOBJ_GEOM, kSoilFieldName);
+  const double slope_rad = terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
+  soil_field_cos = std::cos(slope_rad);
+  soil_field_tan = std::tan(slope_rad);
+  soil_field_normal = {-std::sin(slope_rad), 0.0, std::cos(slope_rad)};
+  for (int geom = 0; geom < model->ngeom; ++geom) {
+    if (model->geom_bodyid[geom] != 0 && (model->geom_contype[geom] & 2) != 0) {
+      soil_field_geoms.push_back(geom);
+    }
+  }
+  // The model was built with the field at the initial level (mujoco_model.cpp).
+  soft_soil->grid().clear_changed();
+}
+
+// Elevation of a vertex: the cell's rise over the ground's plane (its initial level, x·tan α),
+// vertical in the grid, along the plane's normal in the field (×cos α; the vertex stays at the
+// cell's centre, where the soil at that point would lie δ·sin α along the slope — under a
+// millimetre for a 5 cm rut on 1°, 9 mm on 10°), over the field's range from kSoilFieldBelowM
+// below to kSoilFieldAboveM above (clamped to it).
+void RoverPhysics::Impl::copy_soil_to_field() {
+  soil::SoilGrid& grid = soft_soil->grid();
+  const soil::CellBox box = grid.changed();
+  if (box.empty()) return;
+  const mjModel& m = *model;
+  const int columns = m.hfield_ncol[soil_field];
+  float* field = m.hfield_data + m.hfield_adr[soil_field];
+  constexpr double kRange = kSoilFieldBelowM + kSoilFieldAboveM;
+  const soil::GridSpec& spec = grid.spec();
+  for (int iy = box.min_y; iy <= box.max_y; ++iy) {
+    for (int ix = box.min_x; ix <= box.max_x; ++ix) {
+      const double plane = (spec.origin_x_m + (ix + 0.5) * spec.cell_m) * soil_field_tan;
+      const double rise = (grid.cell_surface_m(ix, iy) - plane) * soil_field_cos;
+      field[iy * columns + ix] =
+          static_cast<float>(std::clamp((rise + kSoilFieldBelowM) / kRange, 0.0, 1.0));
+    }
+  }
+  grid.clear_changed();
+}
+
+// How far the chassis' lowest geom lies above the initial surface, along its normal (the support
+// point of each geom the field can meet, in the direction −n).
+double RoverPhysics::Impl::chassis_clearance_m() const {
+  const mjModel& m = *model;
+  const mjData& d = *data;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int geom : soil_field_geoms) {
+    const mjtNum* p = d.geom_xpos + 3 * geom;
+    const mjtNum* r = d.geom_xmat + 9 * geom;  // row-major: column k is the geom's axis k
+    const mjtNum* size = m.geom_size + 3 * geom;
+    const auto along = [&](int axis) {  // |n·axis|
+      return std::abs(soil_field_normal[0] * r[axis] + soil_field_normal[1] * r[3 + axis] +
+                      soil_field_normal[2] * r[6 + axis]);
+    };
+    const double centre =
+        soil_field_normal[0] * p[0] + soil_field_normal[1] * p[1] + soil_field_normal[2] * p[2];
+    double reach = m.geom_rbound[geom];  // any other shape: its bounding sphere
+    switch (m.geom_type[geom]) {
+      case mjGEOM_SPHERE:
+        reach = size[0];
+        break;
+      case mjGEOM_CAPSULE:
+        reach = size[1] * along(2) + size[0];
+        break;
+      case mjGEOM_CYLINDER: {
+        const double axial = along(2);
+        reach = size[1] * axial + size[0] * std::sqrt(std::max(1.0 - axial * axial, 0.0));
+        break;
+      }
+      case mjGEOM_BOX:
+        reach = size[0] * along(0) + size[1] * along(1) + size[2] * along(2);
+        break;
+      default:
+        break;
+    }
+    lowest = std::min(lowest, centre - reach);
+  }
+  return lowest;
+}
+
+// Every kSoilFieldPeriodSteps: the grid's changes into the field, and whether the chassis can
+// reach the soil before the next time. The field's collision with a geom costs MuJoCo a pass over
+// every cell under it (the axles span 27 cells by 4) even when nothing touches, about as much as
+// the soil model's own step; so the field is met only while the chassis' lowest point comes within
+// kSoilFieldReachM of the highest soil under the rover (its cells within kSoilFieldWatchM of the
+// centre unit). A heap that rises or a chassis that sinks faster than the reach in a period would
+// be missed: 2 m/s.
+void RoverPhysics::Impl::update_soil_field() {
+  copy_soil_to_field();
+  const soil::SoilGrid& grid = soft_soil->grid();
+  const soil::GridSpec& spec = grid.spec();
+  const mjtNum* centre = data->xpos + 3 * ids.center_body;
+  const auto cells = [&](double from_m, double origin_m, int count) {
+    return std::clamp(static_cast<int>(std::floor((from_m - origin_m) / spec.cell_m)), 0,
+                      count - 1);
+  };
+  const int x0 = cells(centre[0] - kSoilFieldWatchM, spec.origin_x_m, spec.cells_x);
+  const int x1 = cells(centre[0] + kSoilFieldWatchM, spec.origin_x_m, spec.cells_x);
+  const int y0 = cells(centre[1] - kSoilFieldWatchM, spec.origin_y_m, spec.cells_y);
+  const int y1 = cells(centre[1] + kSoilFieldWatchM, spec.origin_y_m, spec.cells_y);
+  double highest = 0.0;  // the soil's greatest rise over the ground's plane there, vertical
+  for (int iy = y0; iy <= y1; ++iy) {
+    for (int ix = x0; ix <= x1; ++ix) {
+      const double plane = (spec.origin_x_m + (ix + 0.5) * spec.cell_m) * soil_field_tan;
+      highest = std::max(highest, grid.cell_surface_m(ix, iy) - plane);
+    }
+  }
+  const bool reachable = chassis_clearance_m() - highest * soil_field_cos <= kSoilFieldReachM;
+  model->geom_conaffinity[soil_field_geom] = reachable ? 2 : 0;
 }
 
 void RoverPhysics::Impl::apply_soft_soil() {
@@ -67,6 +187,10 @@ void RoverPhysics::Impl::apply_soft_soil() {
     if (m.geom_contype[ids.wheel_geom[wheel]] == 0) kinematics.center_m[2] += kLiftedM;
   }
   const std::vector<soil::WheelWrench> wrenches = soft_soil->step(wheels, m.opt.timestep);
+  if (++soil_field_steps >= kSoilFieldPeriodSteps) {
+    soil_field_steps = 0;
+    update_soil_field();
+  }
   for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
     const int body = ids.wheel_body[wheel];
     const soil::WheelWrench& wrench = wrenches[wheel];

@@ -18,6 +18,11 @@ XmlWriter::Attributes material_attributes(const Material& material) {
                                                          material.rolling_friction_m})}};
 }
 
+// The ground's tilt: nose-up for +x uphill is a negative rotation about y (right-hand rule).
+double ground_pitch_rad(const TerrainSpec& terrain) {
+  return terrain.kind == TerrainKind::kSlope ? -terrain.slope_rad : 0.0;
+}
+
 void write_plane(XmlWriter& xml, const Material& material, const std::array<double, 3>& pos_m,
                  double pitch_rad) {
   XmlWriter::Attributes attributes = material_attributes(material);
@@ -53,6 +58,29 @@ void write_obstacle(XmlWriter& xml, const Obstacle& obstacle, std::size_t index)
   xml.leaf("geom", attributes);
 }
 
+// The soil's field (terrain_mjcf.hpp), in the ground's plane: its centre the grid's, its local x
+// along the slope (the grid's columns), y across (its rows), its elevation 0 kSoilFieldBelowM
+// under the initial level. Like the plane (conaffinity 2), met by the chassis, not the wheels.
+void write_soil_field(XmlWriter& xml, const TerrainSpec& terrain) {
+  XmlWriter::Attributes attributes = material_attributes(terrain.ground);
+  const double slope_rad = terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
+  const soil::GridSpec& grid = kSoftSoilGrid;
+  const double x_m = grid.origin_x_m + 0.5 * grid.cells_x * grid.cell_m;
+  const double y_m = grid.origin_y_m + 0.5 * grid.cells_y * grid.cell_m;
+  // On the initial surface (z = x·tan α) at the centre, then down its normal (−sin α, 0, cos α).
+  const double z_m = x_m * std::tan(slope_rad);
+  attributes.emplace_back("name", kSoilFieldName);
+  attributes.emplace_back("type", "hfield");
+  attributes.emplace_back("hfield", kSoilFieldName);
+  attributes.emplace_back("conaffinity", "2");
+  attributes.emplace_back("pos", xml_numbers(std::array<double, 3>{
+                                     x_m + kSoilFieldBelowM * std::sin(slope_rad), y_m,
+                                     z_m - kSoilFieldBelowM * std::cos(slope_rad)}));
+  attributes.emplace_back(
+      "quat", xml_numbers(quaternion_from_roll_pitch_yaw({0.0, ground_pitch_rad(terrain), 0.0})));
+  xml.leaf("geom", attributes);
+}
+
 void write_heightfield(XmlWriter& xml, const TerrainSpec& terrain) {
   XmlWriter::Attributes attributes = material_attributes(terrain.ground);
   attributes.emplace_back("name", "heightfield");
@@ -72,6 +100,19 @@ std::array<double, 4> quaternion_from_roll_pitch_yaw(const std::array<double, 3>
 }
 
 void write_terrain_assets(XmlWriter& xml, const TerrainSpec& terrain) {
+  if (terrain.ground.soil) {
+    // Vertices at the cells' centres: (cells − 1) cells apart, measured along the slope.
+    const soil::GridSpec& grid = kSoftSoilGrid;
+    const double slope_rad = terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
+    xml.leaf("hfield",
+             {{"name", kSoilFieldName},
+              {"nrow", std::to_string(grid.cells_y)},
+              {"ncol", std::to_string(grid.cells_x)},
+              {"size", xml_numbers(std::array<double, 4>{
+                           0.5 * (grid.cells_x - 1) * grid.cell_m / std::cos(slope_rad),
+                           0.5 * (grid.cells_y - 1) * grid.cell_m,
+                           kSoilFieldBelowM + kSoilFieldAboveM, kSoilFieldBaseM})}});
+  }
   if (terrain.kind != TerrainKind::kHeightfield) return;
   const Heightfield& field = terrain.heightfield;
   xml.leaf("hfield",
@@ -86,12 +127,15 @@ void write_terrain_geoms(XmlWriter& xml, const TerrainSpec& terrain) {
   switch (terrain.kind) {
     case TerrainKind::kFlat:
     case TerrainKind::kObstacles:
-      write_plane(xml, terrain.ground, {0.0, 0.0, 0.0}, 0.0);
+    case TerrainKind::kSlope: {
+      // On soft soil the plane lies kSoilFieldBelowM down its normal, under the soil's field.
+      const double drop_m = terrain.ground.soil ? kSoilFieldBelowM : 0.0;
+      const double pitch_rad = ground_pitch_rad(terrain);
+      write_plane(xml, terrain.ground,
+                  {-drop_m * std::sin(pitch_rad), 0.0, -drop_m * std::cos(pitch_rad)}, pitch_rad);
+      if (terrain.ground.soil) write_soil_field(xml, terrain);
       break;
-    case TerrainKind::kSlope:
-      // Uphill for +x is a nose-up rotation: negative about y (right-hand rule).
-      write_plane(xml, terrain.ground, {0.0, 0.0, 0.0}, -terrain.slope_rad);
-      break;
+    }
     case TerrainKind::kHeightfield:
       write_heightfield(xml, terrain);
       write_plane(xml, terrain.ground, {0.0, 0.0, -kHeightfieldSurroundDropM}, 0.0);

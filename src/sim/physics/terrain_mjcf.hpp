@@ -6,6 +6,7 @@
 #include <array>
 
 #include "sim/physics/terrain.hpp"
+#include "sim/soil/soil_grid.hpp"
 #include "sim/physics/xml_writer.hpp"
 
 namespace marsokhod::sim {
@@ -15,6 +16,19 @@ inline constexpr const char* kHeightfieldName = "terrain";
 // 0), so that it neither doubles the heightfield's contacts nor leaves a cliff at its edge.
 inline constexpr double kHeightfieldSurroundDropM = 0.01;
 inline constexpr double kHeightfieldBaseM = 0.1;  // the heightfield's thickness below height 0
+
+// Soft soil (rover_soft_soil.cpp): the soil's grid, 2 cm cells from x = −3 m to 9 m and y = −3 m
+// to 3 m around the start, and a MuJoCo height field with a vertex at each cell's centre that
+// copies the grid's surface, so that the chassis meets the ruts and heaps the wheels leave (the
+// wheels themselves pass through it; the soil model carries them). The field spans the soil from
+// kSoilFieldBelowM under its initial level to kSoilFieldAboveM over it, along the ground's normal;
+// the ground plane lies kSoilFieldBelowM under the initial level, so that under the grid only the
+// field is met and beyond it the chassis still finds ground.
+inline constexpr soil::GridSpec kSoftSoilGrid{-3.0, -3.0, 0.02, 600, 300};
+inline constexpr const char* kSoilFieldName = "soil";
+inline constexpr double kSoilFieldBelowM = 0.25;  // deeper than a wheel's radius: any hole it digs
+inline constexpr double kSoilFieldAboveM = 0.15;  // rims and spoil; under the centre unit's belly
+inline constexpr double kSoilFieldBaseM = 0.05;   // the field's thickness under its lowest level
 
 // A quaternion (w, x, y, z) of R = Rz(yaw)·Ry(pitch)·Rx(roll).
 std::array<double, 4> quaternion_from_roll_pitch_yaw(const std::array<double, 3>& rpy_rad);

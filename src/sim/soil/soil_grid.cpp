@@ -90,6 +90,7 @@ SoilGrid::SoilGrid(GridSpec spec, SoilParams soil,
     }
   }
   initial_ = surface_;
+  mark_changed(0, 0, spec_.cells_x - 1, spec_.cells_y - 1);
   repose_step_m_ = spec_.cell_m * std::tan(soil_.repose_angle_rad) + 1e-12;
   inverse_unloading_ = (1.0 + 1e-12) / soil_.unloading_stiffness_ratio;  // a bound, not a value
 }
@@ -116,12 +117,34 @@ void SoilGrid::set_cell_surface_m(int ix, int iy, double level_m) {
   }
   surface_[index(ix, iy)] = level_m;
   initial_[index(ix, iy)] = level_m;
+  mark_changed(ix, iy, ix, iy);
+}
+
+void SoilGrid::mark_changed(int min_x, int min_y, int max_x, int max_y) {
+  if (max_x < min_x || max_y < min_y) return;
+  if (changed_.empty()) {
+    changed_ = {min_x, min_y, max_x, max_y};
+    return;
+  }
+  changed_.min_x = std::min(changed_.min_x, min_x);
+  changed_.min_y = std::min(changed_.min_y, min_y);
+  changed_.max_x = std::max(changed_.max_x, max_x);
+  changed_.max_y = std::max(changed_.max_y, max_y);
+}
+
+void SoilGrid::mark_changed_cell(std::size_t cell) {
+  const auto columns = static_cast<std::size_t>(spec_.cells_x);
+  const int ix = static_cast<int>(cell % columns), iy = static_cast<int>(cell / columns);
+  mark_changed(ix, iy, ix, iy);
 }
 
 void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
   const double depth =
       volume_m3 / (static_cast<double>(cells.size()) * spec_.cell_m * spec_.cell_m);
-  for (int cell : cells) surface_[static_cast<std::size_t>(cell)] += depth;
+  for (int cell : cells) {
+    surface_[static_cast<std::size_t>(cell)] += depth;
+    mark_changed_cell(static_cast<std::size_t>(cell));
+  }
   volumes_.fill_m3 += volume_m3;
 }
 
@@ -130,6 +153,7 @@ void SoilGrid::level() {
   std::fill(sinkage_.begin(), sinkage_.end(), 0.0);
   std::fill(compaction_.begin(), compaction_.end(), 0.0);
   volumes_ = SoilVolumes{};
+  mark_changed(0, 0, spec_.cells_x - 1, spec_.cells_y - 1);
 }
 
 double SoilGrid::max_depth_m(double x0_m, double y0_m, double x1_m, double y1_m) const {
@@ -219,6 +243,7 @@ void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
   int contact_min_y = max_y + 1, contact_max_y = min_y - 1;
   const double area = spec_.cell_m * spec_.cell_m;
   double displaced_m3 = 0.0;
+  bool cut_any = false;
   const Underside underside(wheel);
   // Raster order: the contact cells come out ascending.
   for (int iy = min_y; iy <= max_y; ++iy) {
@@ -245,6 +270,7 @@ void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
       if (rim >= surface_[i]) continue;
       const double cut = surface_[i] - rim;
       surface_[i] = rim;
+      cut_any = true;
       sinkage_[i] += cut;
       compaction_[i] += (1.0 - soil_.displaced_fraction) * cut;
       volumes_.cut_m3 += cut * area;
@@ -252,6 +278,7 @@ void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
       displaced_m3 += soil_.displaced_fraction * cut * area;
     }
   }
+  if (cut_any) mark_changed(contact_min_x, contact_min_y, contact_max_x, contact_max_y);
   footprint.min_x = contact_min_x;
   footprint.max_x = contact_max_x;
   footprint.min_y = contact_min_y;
@@ -333,6 +360,7 @@ void SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, const
   const double depth = volume_m3 / (static_cast<double>(footprint.contact_cells.size()) *
                                     spec_.cell_m * spec_.cell_m);
   for (int cell : footprint.contact_cells) surface_[static_cast<std::size_t>(cell)] -= depth;
+  mark_changed(footprint.min_x, footprint.min_y, footprint.max_x, footprint.max_y);
   volumes_.cut_m3 += volume_m3;
   volumes_.excavated_m3 += volume_m3;
   spread(targets, volume_m3);
@@ -384,6 +412,7 @@ void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {
       }
     }
     if (!moved) return;
+    mark_changed(x0, y0, x1, y1);
   }
 }
 

@@ -67,6 +67,12 @@ struct Cylinder {
 };
 
 // The cells a press touched, for excavation and relaxation to act on.
+// A box of cells, inclusive; empty when max < min.
+struct CellBox {
+  int min_x = 0, min_y = 0, max_x = -1, max_y = -1;
+  bool empty() const { return max_x < min_x || max_y < min_y; }
+};
+
 struct Footprint {
   std::vector<int> contact_cells;                    // cell indices, ascending
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // their box (empty: max < min)
@@ -109,6 +115,11 @@ class SoilGrid {
   // mean compaction of the ground the wheels pressed.
   double compacted_area_m2() const;
   Earthwork earthwork() const;
+  // The box of the cells whose surface may have changed since the last clear_changed() (all of
+  // them after construction or level()): what a copy of the surface (the physics' height field)
+  // has to take again.
+  const CellBox& changed() const { return changed_; }
+  void clear_changed() { changed_ = CellBox{}; }
 
   // Cuts the cells under the cylinder down to its rim; returns the contact patch (the second form
   // fills `footprint`, keeping its list's capacity from step to step).
@@ -139,6 +150,8 @@ class SoilGrid {
     return true;
   }
   void move_downhill(std::size_t first, std::size_t second, double difference, double limit_m);
+  void mark_changed(int min_x, int min_y, int max_x, int max_y);
+  void mark_changed_cell(std::size_t cell);
 
   GridSpec spec_;
   SoilParams soil_;
@@ -151,6 +164,7 @@ class SoilGrid {
   double repose_step_m_ = 0.0;       // the steepest difference of neighbours, cell·tan(repose)
   // (A tiny tolerance in it stops endless passes over differences rounding keeps at the limit.)
   SoilVolumes volumes_;
+  CellBox changed_;
 };
 
 inline double SoilGrid::bilinear(const std::vector<double>& field,

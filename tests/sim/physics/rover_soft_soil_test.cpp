@@ -2,11 +2,16 @@
 // xfrc_applied instead of MuJoCo contacts. Every scenario counts exact steps of 1 ms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numbers>
+#include <tuple>
+#include <utility>
 
 #include "physics_test_support.hpp"
 #include "sim/physics/rover_physics.hpp"
+#include "sim/soil/soft_soil.hpp"
 
 namespace marsokhod::sim {
 namespace {
@@ -15,6 +20,7 @@ using testing::all_wheels;
 using testing::drive_at;
 using testing::expect_healthy;
 using testing::run;
+using testing::slope_deg;
 
 TerrainSpec soft_flat() {
   TerrainSpec terrain;
@@ -128,6 +134,97 @@ TEST(RoverSoftSoil, TrenchWithTheFrontRightWheelDigsAboutNineCentimetres) {
   EXPECT_LT(std::hypot(end.position_m[0] - standing.position_m[0],
                        end.position_m[1] - standing.position_m[1]),
             0.01);
+}
+
+// The soil's MuJoCo height field (terrain_mjcf.hpp) holds the grid's surface: a vertical ray onto
+// the terrain, which the chassis' collisions share, meets the ruts and rims the wheels left. On
+// flat ground exactly at each cell's centre (the field's vertex there; float's 24 bits over its
+// 0.4 m range: < 1e-7 m). On a slope α the field lies in the ground's plane and a cell's rise δ
+// over it goes along the normal: the vertex moves δ·cos α·sin α downhill of the cell's centre to
+// the height x·tan α + δ·cos²α, and a vertical ray at the centre meets the field's edge between
+// it and the neighbour on the centre's side (a vertex on the same row: the field is linear along
+// it) — worked out here from the grid, to 1e-6 m.
+TEST(RoverSoftSoil, TheHeightFieldFollowsTheRuts) {
+  for (const double slope : {0.0, 10.0}) {
+    SCOPED_TRACE(slope);
+    TerrainSpec terrain = slope == 0.0 ? soft_flat() : slope_deg(slope);
+    terrain.ground = soft_sand();
+    RoverPhysics physics(Params{}, terrain);
+    run(physics, 500);
+    physics.set_drive(drive_at(all_wheels(2.0)));
+    run(physics, 2000);  // a multiple of the field's 10 ms: it holds the grid of this step
+    const soil::SoilGrid& grid = physics.soft_soil()->grid();
+    const soil::GridSpec& spec = grid.spec();
+    const double alpha = slope * std::numbers::pi / 180.0;
+    const auto centre_x = [&](int ix) { return spec.origin_x_m + (ix + 0.5) * spec.cell_m; };
+    const auto rise = [&](int ix, int iy) {
+      return grid.cell_surface_m(ix, iy) - centre_x(ix) * std::tan(alpha);
+    };
+    const auto vertex = [&](int ix, int iy) {  // (x, z) of the field's vertex of a cell
+      const double delta = rise(ix, iy);
+      return std::pair{centre_x(ix) - delta * std::cos(alpha) * std::sin(alpha),
+                       centre_x(ix) * std::tan(alpha) + delta * std::cos(alpha) * std::cos(alpha)};
+    };
+    double deepest = 0.0, highest = 0.0;
+    int cells = 0;
+    for (int iy = 100; iy < 200; ++iy) {       // y −1…1 m
+      for (int ix = 100; ix < 250; ix += 2) {  // x −1…2 m
+        const double x = centre_x(ix);
+        const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
+        deepest = std::min(deepest, rise(ix, iy));
+        highest = std::max(highest, rise(ix, iy));
+        auto [x0, z0] = vertex(ix, iy);
+        auto [x1, z1] = vertex(ix + 1, iy);
+        if (x0 > x) {  // moved uphill of the centre (a rut): the edge to the downhill neighbour
+          std::tie(x1, z1) = std::pair{x0, z0};
+          std::tie(x0, z0) = vertex(ix - 1, iy);
+        }
+        const double expected = z0 + (x - x0) / (x1 - x0) * (z1 - z0);
+        ASSERT_NEAR(physics.terrain_height_m(x, y), expected, slope == 0.0 ? 1e-7 : 1e-6)
+            << ix << ", " << iy << ": the cell's surface " << grid.cell_surface_m(ix, iy);
+        ++cells;
+      }
+    }
+    EXPECT_EQ(cells, 7500);
+    EXPECT_LT(deepest, -0.01);  // ruts 1 cm deep and more, and heaped rims beside them
+    EXPECT_GT(highest, 0.002);
+  }
+}
+
+// The chassis meets the soil where it rises to it: a 10 cm mound of sand under the front exterior
+// axle (its capsule, r = 0.04 m, ≈ 6 cm above the soil as the wheels sink in) lifts the axle onto
+// it, the axle's centre 0.10 + 0.04 m up, the front wheels hanging; without the mound the axle
+// stays where its wheels hold it. (Beneath the field the ground plane lies 0.25 m down: it holds
+// no chassis near the soil.)
+TEST(RoverSoftSoil, TheChassisRestsOnAMoundOfSoil) {
+  const auto front_axle_height_m = [](bool mound) {
+    RoverPhysics physics(Params{}, soft_flat());
+    run(physics, 500);
+    const GroundTruth start = physics.truth();
+    if (mound) {
+      soil::SoilGrid& grid = physics.soft_soil()->grid();
+      const soil::GridSpec& spec = grid.spec();
+      const double axle_x = start.wheel_position_m[kFrontLeft][0];
+      for (int iy = 0; iy < spec.cells_y; ++iy) {
+        for (int ix = 0; ix < spec.cells_x; ++ix) {
+          const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
+          const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
+          if (std::abs(x - axle_x) < 0.06 && std::abs(y) < 0.15) {
+            grid.set_cell_surface_m(ix, iy, 0.10);
+          }
+        }
+      }
+    }
+    run(physics, 1000);
+    expect_healthy(physics);
+    const GroundTruth end = physics.truth();
+    return 0.5 * (end.wheel_position_m[kFrontLeft][2] + end.wheel_position_m[kFrontRight][2]);
+  };
+  const double resting = front_axle_height_m(false);
+  const double lifted = front_axle_height_m(true);
+  EXPECT_GT(resting, 0.09);
+  EXPECT_LT(resting, 0.115);
+  EXPECT_NEAR(lifted, 0.14, 0.01);
 }
 
 TEST(RoverSoftSoil, TwoRunsAreBitIdentical) {
