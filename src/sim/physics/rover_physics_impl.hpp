@@ -75,10 +75,11 @@ struct RoverPhysics::Impl {
   std::optional<soil::SoftSoil> soft_soil;
   std::array<soil::WheelWrench, kWheelCount> soil_wrenches{};  // the last step's
   // The height field the chassis meets on soft soil (rover_soft_soil.cpp): its id and its geom's,
-  // the ground's cos α, tan α and normal, the geoms that can meet it, the steps since it last took the
+  // the ground's cos α, its plane and normal, the geoms that can meet it, the steps since it last took the
   // grid's changes.
   int soil_field = -1, soil_field_geom = -1;
-  double soil_field_cos = 1.0, soil_field_tan = 0.0;
+  double soil_field_cos = 1.0;
+  std::vector<double> soil_field_plane;  // the plane's height at each column's cells' centres
   std::array<double, 3> soil_field_normal{0.0, 0.0, 1.0};
   std::vector<int> soil_field_geoms;
   int soil_field_steps = 0;

@@ -62,7 +62,10 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   soil_field_geom = require_id(*model, mjOBJ_GEOM, kSoilFieldName);
   const double slope_rad = terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
   soil_field_cos = std::cos(slope_rad);
-  soil_field_tan = std::tan(slope_rad);
+  for (int ix = 0; ix < kSoftSoilGrid.cells_x; ++ix) {
+    soil_field_plane.push_back(
+        (kSoftSoilGrid.origin_x_m + (ix + 0.5) * kSoftSoilGrid.cell_m) * std::tan(slope_rad));
+  }
   soil_field_normal = {-std::sin(slope_rad), 0.0, std::cos(slope_rad)};
   for (int geom = 0; geom < model->ngeom; ++geom) {
     if (model->geom_bodyid[geom] != 0 && (model->geom_contype[geom] & 2) != 0) {
@@ -86,11 +89,11 @@ void RoverPhysics::Impl::copy_soil_to_field() {
   const int columns = m.hfield_ncol[soil_field];
   float* field = m.hfield_data + m.hfield_adr[soil_field];
   constexpr double kRange = kSoilFieldBelowM + kSoilFieldAboveM;
-  const soil::GridSpec& spec = grid.spec();
   for (int iy = box.min_y; iy <= box.max_y; ++iy) {
     for (int ix = box.min_x; ix <= box.max_x; ++ix) {
-      const double plane = (spec.origin_x_m + (ix + 0.5) * spec.cell_m) * soil_field_tan;
-      const double rise = (grid.cell_surface_m(ix, iy) - plane) * soil_field_cos;
+      const double rise =
+          (grid.cell_surface_m(ix, iy) - soil_field_plane[static_cast<std::size_t>(ix)]) *
+          soil_field_cos;
       field[iy * columns + ix] =
           static_cast<float>(std::clamp((rise + kSoilFieldBelowM) / kRange, 0.0, 1.0));
     }
@@ -161,8 +164,8 @@ void RoverPhysics::Impl::update_soil_field() {
   double highest = 0.0;  // the soil's greatest rise over the ground's plane there, vertical
   for (int iy = y0; iy <= y1; ++iy) {
     for (int ix = x0; ix <= x1; ++ix) {
-      const double plane = (spec.origin_x_m + (ix + 0.5) * spec.cell_m) * soil_field_tan;
-      highest = std::max(highest, grid.cell_surface_m(ix, iy) - plane);
+      highest = std::max(highest, grid.cell_surface_m(ix, iy) -
+                                      soil_field_plane[static_cast<std::size_t>(ix)]);
     }
   }
   const bool reachable = chassis_clearance_m() - highest * soil_field_cos <= kSoilFieldReachM;
