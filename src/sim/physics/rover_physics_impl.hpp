@@ -76,15 +76,15 @@ struct RoverPhysics::Impl {
   std::array<soil::WheelWrench, kWheelCount> soil_wrenches{};  // the last step's
   // The height field the chassis meets on soft soil (rover_soft_soil.cpp): its id and its geom's,
   // the ground's cos α, its plane and normal, the geoms that can meet it, the steps since it last took the
-  // grid's changes.
+  // grid's changes and how many make its period.
   int soil_field = -1, soil_field_geom = -1;
   double soil_field_cos = 1.0;
   std::vector<double> soil_field_plane;  // the plane's height at each column's cells' centres
   std::array<double, 3> soil_field_normal{0.0, 0.0, 1.0};
   std::vector<int> soil_field_geoms;
-  int soil_field_steps = 0;
+  int soil_field_steps = 0, soil_field_period_steps = 10;
   void copy_soil_to_field();
-  double chassis_clearance_m() const;
+  bool chassis_near_soil() const;
   void update_soil_field();
 };
 

@@ -7,8 +7,8 @@
 //
 // The grid (kSoftSoilGrid, terrain_mjcf.hpp): 2 cm cells from x = −3 m to 9 m and y = −3 m to 3 m
 // around the start, at the ground's initial level (flat, or x·tan(slope) on a slope). Beyond it
-// the edge cells' heights continue. Every kSoilFieldPeriodSteps steps the cells that changed are
-// copied into the MuJoCo height field the chassis meets (terrain_mjcf.hpp).
+// the edge cells' heights continue. Every 10 ms the cells that changed are copied into the MuJoCo
+// height field the chassis meets (terrain_mjcf.hpp).
 // Blades: mirror-symmetric across the rover's middle — the left wheels right-handed, the right
 // wheels left-handed (docs/simulator.md), inclined at the geometry's blade_inclination_rad (i);
 // rim radius = wheel radius − 1 cm of blade.
@@ -28,12 +28,12 @@ using soil::operator+;
 using soil::operator-;
 
 constexpr double kBladeHeightM = 0.010;  // chapter 3.1: 0.125 m with blades, 0.115 on granules
-// The field follows the grid every 10 ms: ruts grow by well under a millimetre in that time, and
-// copying the changed cells every step would cost a tenth of the soil's own work.
-constexpr int kSoilFieldPeriodSteps = 10;
+// The field follows the grid every 10 ms (whatever the physics' step): ruts grow by well under a
+// millimetre in that time, and copying the changed cells every step would cost a tenth of the
+// soil's own work.
+constexpr double kSoilFieldPeriodS = 0.010;
 // The field is met while the chassis comes this close to the soil (update_soil_field).
 constexpr double kSoilFieldReachM = 0.02;
-constexpr double kSoilFieldWatchM = 0.8;  // the rover's half-length and more, from its centre
 // A wheel whose contact is switched off (set_wheel_contact) is shown to the soil this high up.
 constexpr double kLiftedM = 10.0;
 
@@ -62,6 +62,8 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   soil_field_geom = require_id(*model, mjOBJ_GEOM, kSoilFieldName);
   const double slope_rad = terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
   soil_field_cos = std::cos(slope_rad);
+  soil_field_period_steps =
+      std::max(1, static_cast<int>(std::lround(kSoilFieldPeriodS / model->opt.timestep)));
   for (int ix = 0; ix < kSoftSoilGrid.cells_x; ++ix) {
     soil_field_plane.push_back(
         (kSoftSoilGrid.origin_x_m + (ix + 0.5) * kSoftSoilGrid.cell_m) * std::tan(slope_rad));
@@ -101,75 +103,74 @@ void RoverPhysics::Impl::copy_soil_to_field() {
   grid.clear_changed();
 }
 
-// How far the chassis' lowest geom lies above the initial surface, along its normal (the support
-// point of each geom the field can meet, in the direction −n).
-double RoverPhysics::Impl::chassis_clearance_m() const {
+// Whether any geom the field can meet comes within kSoilFieldReachM of the soil under it: its
+// lowest point along the ground's normal n (its support point in the direction −n) against the
+// highest soil, along n, under its box in x and y. Shapes as MuJoCo's: a capsule's or cylinder's
+// radius and half-length along its local z, a box's half-sizes; any other its bounding sphere.
+bool RoverPhysics::Impl::chassis_near_soil() const {
   const mjModel& m = *model;
   const mjData& d = *data;
-  double lowest = std::numeric_limits<double>::infinity();
+  const soil::SoilGrid& grid = soft_soil->grid();
+  const soil::GridSpec& spec = grid.spec();
+  const std::array<double, 3>& n = soil_field_normal;
+  const auto cell = [&](double at_m, double origin_m, int count) {
+    return std::clamp(static_cast<int>(std::floor((at_m - origin_m) / spec.cell_m)), 0,
+                      count - 1);
+  };
   for (int geom : soil_field_geoms) {
     const mjtNum* p = d.geom_xpos + 3 * geom;
     const mjtNum* r = d.geom_xmat + 9 * geom;  // row-major: column k is the geom's axis k
     const mjtNum* size = m.geom_size + 3 * geom;
-    const auto along = [&](int axis) {  // |n·axis|
-      return std::abs(soil_field_normal[0] * r[axis] + soil_field_normal[1] * r[3 + axis] +
-                      soil_field_normal[2] * r[6 + axis]);
+    const auto along = [&](const std::array<double, 3>& u, int axis) {  // |u·axis|
+      return std::abs(u[0] * r[axis] + u[1] * r[3 + axis] + u[2] * r[6 + axis]);
     };
-    const double centre =
-        soil_field_normal[0] * p[0] + soil_field_normal[1] * p[1] + soil_field_normal[2] * p[2];
-    double reach = m.geom_rbound[geom];  // any other shape: its bounding sphere
-    switch (m.geom_type[geom]) {
-      case mjGEOM_SPHERE:
-        reach = size[0];
-        break;
-      case mjGEOM_CAPSULE:
-        reach = size[1] * along(2) + size[0];
-        break;
-      case mjGEOM_CYLINDER: {
-        const double axial = along(2);
-        reach = size[1] * axial + size[0] * std::sqrt(std::max(1.0 - axial * axial, 0.0));
-        break;
+    const auto reach = [&](const std::array<double, 3>& u) {  // support of the geom along ±u
+      switch (m.geom_type[geom]) {
+        case mjGEOM_SPHERE:
+          return size[0];
+        case mjGEOM_CAPSULE:
+          return size[1] * along(u, 2) + size[0];
+        case mjGEOM_CYLINDER: {
+          const double axial = along(u, 2);
+          return size[1] * axial + size[0] * std::sqrt(std::max(1.0 - axial * axial, 0.0));
+        }
+        case mjGEOM_BOX:
+          return size[0] * along(u, 0) + size[1] * along(u, 1) + size[2] * along(u, 2);
+        default:
+          return m.geom_rbound[geom];
       }
-      case mjGEOM_BOX:
-        reach = size[0] * along(0) + size[1] * along(1) + size[2] * along(2);
-        break;
-      default:
-        break;
+    };
+    const double lowest = n[0] * p[0] + n[1] * p[1] + n[2] * p[2] - reach(n);
+    // Above the field's top (its elevations end kSoilFieldAboveM over the plane): out of reach.
+    if (lowest > kSoilFieldAboveM + kSoilFieldReachM) continue;
+    const double half_x = reach({1.0, 0.0, 0.0}), half_y = reach({0.0, 1.0, 0.0});
+    const int x0 = cell(p[0] - half_x, spec.origin_x_m, spec.cells_x);
+    const int x1 = cell(p[0] + half_x, spec.origin_x_m, spec.cells_x);
+    const int y0 = cell(p[1] - half_y, spec.origin_y_m, spec.cells_y);
+    const int y1 = cell(p[1] + half_y, spec.origin_y_m, spec.cells_y);
+    double highest = -std::numeric_limits<double>::infinity();  // rise over the plane, vertical
+    for (int iy = y0; iy <= y1; ++iy) {
+      for (int ix = x0; ix <= x1; ++ix) {
+        highest = std::max(highest, grid.cell_surface_m(ix, iy) -
+                                        soil_field_plane[static_cast<std::size_t>(ix)]);
+      }
     }
-    lowest = std::min(lowest, centre - reach);
+    if (lowest - std::min(highest, kSoilFieldAboveM) * soil_field_cos <= kSoilFieldReachM) {
+      return true;
+    }
   }
-  return lowest;
+  return false;
 }
 
-// Every kSoilFieldPeriodSteps: the grid's changes into the field, and whether the chassis can
-// reach the soil before the next time. The field's collision with a geom costs MuJoCo a pass over
-// every cell under it (the axles span 27 cells by 4) even when nothing touches, about as much as
-// the soil model's own step; so the field is met only while the chassis' lowest point comes within
-// kSoilFieldReachM of the highest soil under the rover (its cells within kSoilFieldWatchM of the
-// centre unit). A heap that rises or a chassis that sinks faster than the reach in a period would
-// be missed: 2 m/s.
+// Every period (10 ms): the grid's changes into the field, and whether the chassis can reach the
+// soil before the next time. The field's collision with a geom costs MuJoCo a pass over every
+// cell under the geom's box (the axles span 27 cells by 4) even when nothing touches, as much as
+// the soil model's own step; so the field is met only while some geom comes within
+// kSoilFieldReachM (2 cm) of the soil under it. A heap that rises or a chassis that sinks faster
+// than 2 cm in 10 ms, 2 m/s, would be missed.
 void RoverPhysics::Impl::update_soil_field() {
   copy_soil_to_field();
-  const soil::SoilGrid& grid = soft_soil->grid();
-  const soil::GridSpec& spec = grid.spec();
-  const mjtNum* centre = data->xpos + 3 * ids.center_body;
-  const auto cells = [&](double from_m, double origin_m, int count) {
-    return std::clamp(static_cast<int>(std::floor((from_m - origin_m) / spec.cell_m)), 0,
-                      count - 1);
-  };
-  const int x0 = cells(centre[0] - kSoilFieldWatchM, spec.origin_x_m, spec.cells_x);
-  const int x1 = cells(centre[0] + kSoilFieldWatchM, spec.origin_x_m, spec.cells_x);
-  const int y0 = cells(centre[1] - kSoilFieldWatchM, spec.origin_y_m, spec.cells_y);
-  const int y1 = cells(centre[1] + kSoilFieldWatchM, spec.origin_y_m, spec.cells_y);
-  double highest = 0.0;  // the soil's greatest rise over the ground's plane there, vertical
-  for (int iy = y0; iy <= y1; ++iy) {
-    for (int ix = x0; ix <= x1; ++ix) {
-      highest = std::max(highest, grid.cell_surface_m(ix, iy) -
-                                      soil_field_plane[static_cast<std::size_t>(ix)]);
-    }
-  }
-  const bool reachable = chassis_clearance_m() - highest * soil_field_cos <= kSoilFieldReachM;
-  model->geom_conaffinity[soil_field_geom] = reachable ? 2 : 0;
+  model->geom_conaffinity[soil_field_geom] = chassis_near_soil() ? 2 : 0;
 }
 
 void RoverPhysics::Impl::apply_soft_soil() {
@@ -190,7 +191,7 @@ void RoverPhysics::Impl::apply_soft_soil() {
     if (m.geom_contype[ids.wheel_geom[wheel]] == 0) kinematics.center_m[2] += kLiftedM;
   }
   const std::vector<soil::WheelWrench> wrenches = soft_soil->step(wheels, m.opt.timestep);
-  if (++soil_field_steps >= kSoilFieldPeriodSteps) {
+  if (++soil_field_steps >= soil_field_period_steps) {
     soil_field_steps = 0;
     update_soil_field();
   }

@@ -188,6 +188,12 @@ TEST(RoverSoftSoil, TheHeightFieldFollowsTheRuts) {
     EXPECT_EQ(cells, 7500);
     EXPECT_LT(deepest, -0.01);  // ruts 1 cm deep and more, and heaped rims beside them
     EXPECT_GT(highest, 0.002);
+    // Raked level (the calibration bench's level_soil), the field is the plane again.
+    physics.level_soil();
+    for (int ix = 100; ix < 250; ix += 7) {
+      const double x = centre_x(ix);
+      ASSERT_NEAR(physics.terrain_height_m(x, 0.29), x * std::tan(alpha), 1e-7) << ix;
+    }
   }
 }
 
@@ -225,6 +231,32 @@ TEST(RoverSoftSoil, TheChassisRestsOnAMoundOfSoil) {
   EXPECT_GT(resting, 0.09);
   EXPECT_LT(resting, 0.115);
   EXPECT_NEAR(lifted, 0.14, 0.01);
+}
+
+// The chassis resting on the soil with both exterior axles: a ridge 8 cm high between the wheels'
+// tracks under the whole rover (|x| < 0.75 m, |y| < 0.18 m), above the axles' undersides (≈ 6 cm
+// up). Each axle's capsule lies on the ridge, its centre 0.08 + 0.04 m up, at up to MuJoCo's 50
+// contacts a geom pair; the contact buffer holds them all (no warning: expect_healthy).
+TEST(RoverSoftSoil, BothAxlesRestOnARidgeWithinTheContactBuffer) {
+  RoverPhysics physics(Params{}, soft_flat());
+  soil::SoilGrid& grid = physics.soft_soil()->grid();
+  const soil::GridSpec& spec = grid.spec();
+  for (int iy = 0; iy < spec.cells_y; ++iy) {
+    for (int ix = 0; ix < spec.cells_x; ++ix) {
+      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
+      const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
+      if (std::abs(x) < 0.75 && std::abs(y) < 0.18) grid.set_cell_surface_m(ix, iy, 0.08);
+    }
+  }
+  run(physics, 1500);
+  expect_healthy(physics);
+  const GroundTruth end = physics.truth();
+  for (const auto& [left, right] : {std::pair{kFrontLeft, kFrontRight},
+                                    std::pair{kBackLeft, kBackRight}}) {
+    EXPECT_NEAR(0.5 * (end.wheel_position_m[left][2] + end.wheel_position_m[right][2]), 0.12,
+                0.01)
+        << kMotorNames[left];
+  }
 }
 
 TEST(RoverSoftSoil, TwoRunsAreBitIdentical) {
