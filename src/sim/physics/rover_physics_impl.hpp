@@ -75,8 +75,8 @@ struct RoverPhysics::Impl {
   std::optional<soil::SoftSoil> soft_soil;
   std::array<soil::WheelWrench, kWheelCount> soil_wrenches{};  // the last step's
   // The height field the chassis meets on soft soil (rover_soft_soil.cpp): its id and its geom's,
-  // the ground's cos α, its plane and normal, the geoms that can meet it, the steps since it last took the
-  // grid's changes and how many make its period.
+  // the ground's cos α, its plane and normal, the geoms that can meet it, the steps since it last
+  // took the grid's changes and how many make its period.
   int soil_field = -1, soil_field_geom = -1;
   double soil_field_cos = 1.0;
   std::vector<double> soil_field_plane;  // the plane's height at each column's cells' centres

@@ -78,11 +78,11 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   soft_soil->grid().clear_changed();
 }
 
-// Elevation of a vertex: the cell's rise over the ground's plane (its initial level, x·tan α),
-// vertical in the grid, along the plane's normal in the field (×cos α; the vertex stays at the
-// cell's centre, where the soil at that point would lie δ·sin α along the slope — under a
-// millimetre for a 5 cm rut on 1°, 9 mm on 10°), over the field's range from kSoilFieldBelowM
-// below to kSoilFieldAboveM above (clamped to it).
+// Elevation of a vertex: the cell's rise δ over the ground's plane (its initial level, x·tan α),
+// vertical in the grid, along the plane's normal in the field (×cos α; the vertex keeps its
+// place in the plane, δ·sin α·cos α downhill of the soil it stands for — under a millimetre for a
+// 5 cm rut on 1°, 8.6 mm on 10°), over the field's range from kSoilFieldBelowM below to
+// kSoilFieldAboveM above (clamped to it).
 void RoverPhysics::Impl::copy_soil_to_field() {
   soil::SoilGrid& grid = soft_soil->grid();
   const soil::CellBox box = grid.changed();
