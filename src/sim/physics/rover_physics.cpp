@@ -397,6 +397,10 @@ double RoverPhysics::terrain_height_m(double x_m, double y_m) const {
   return distance >= 0.0 ? kRayStartHeightM - distance : std::numeric_limits<double>::quiet_NaN();
 }
 
+bool RoverPhysics::soil_field_met() const {
+  return impl_->soft_soil && impl_->model->geom_conaffinity[impl_->soil_field_geom] != 0;
+}
+
 void RoverPhysics::level_soil() {
   if (!impl_->soft_soil) return;
   impl_->soft_soil->level();

@@ -114,6 +114,10 @@ class RoverPhysics {
   // The height of the terrain's geoms under (x, y) — the ground, the soft soil's height field,
   // the obstacles; what the chassis meets — by a vertical ray from 1 km up; NaN where it misses.
   double terrain_height_m(double x_m, double y_m) const;
+  // Whether MuJoCo now collides the chassis with the soft soil's height field: only while some
+  // chassis geom comes within 2 cm of the soil under it (rover_soft_soil.cpp); false on rigid
+  // ground.
+  bool soil_field_met() const;
   // A weight strapped to a wheel's rim (Procedure 4.13): a gravity torque peak·sin φ on the
   // wheel's hinge, φ its angle (0: the weight at the top). 0 removes it. The stand keeps the
   // chassis level, so φ is measured from the vertical.

@@ -233,6 +233,35 @@ TEST(RoverSoftSoil, TheChassisRestsOnAMoundOfSoil) {
   EXPECT_NEAR(lifted, 0.14, 0.01);
 }
 
+// The field's collision, which costs MuJoCo a pass over every cell under a geom, is met only where
+// the chassis comes near the soil: never while the rover drives on flat soft sand (the axles'
+// undersides stay ≈ 6 cm up, the rims the wheels heap ≈ 1 cm), at once (within its 10 ms) when a
+// mound rises under an axle, and not on rigid ground, which has no field.
+TEST(RoverSoftSoil, TheFieldIsMetOnlyWhereTheChassisNearsTheSoil) {
+  RoverPhysics physics(Params{}, soft_flat());
+  run(physics, 500);
+  physics.set_drive(drive_at(all_wheels(2.0)));
+  for (int i = 0; i < 2000; ++i) {
+    physics.step();
+    ASSERT_FALSE(physics.soil_field_met()) << "step " << i;
+  }
+  soil::SoilGrid& grid = physics.soft_soil()->grid();
+  const soil::GridSpec& spec = grid.spec();
+  const double axle_x = physics.truth().wheel_position_m[kFrontLeft][0];
+  for (int iy = 0; iy < spec.cells_y; ++iy) {
+    for (int ix = 0; ix < spec.cells_x; ++ix) {
+      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
+      const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
+      if (std::abs(x - axle_x) < 0.06 && std::abs(y) < 0.15) grid.set_cell_surface_m(ix, iy, 0.10);
+    }
+  }
+  run(physics, 10);
+  EXPECT_TRUE(physics.soil_field_met());
+  RoverPhysics rigid(Params{}, TerrainSpec{});
+  run(rigid, 10);
+  EXPECT_FALSE(rigid.soil_field_met());
+}
+
 // The chassis resting on the soil with both exterior axles: a ridge 8 cm high between the wheels'
 // tracks under the whole rover (|x| < 0.75 m, |y| < 0.18 m), above the axles' undersides (≈ 6 cm
 // up). Each axle's capsule lies on the ridge, its centre 0.08 + 0.04 m up, at up to MuJoCo's 50
