@@ -28,6 +28,21 @@ TerrainSpec soft_flat() {
   return terrain;
 }
 
+// Sets every cell of the soil whose centre (x, y) is `inside` to the level `level_m` (a mound or
+// a ridge, undisturbed soil at that height).
+template <typename Inside>
+void raise_soil(RoverPhysics& physics, Inside inside, double level_m) {
+  soil::SoilGrid& grid = physics.soft_soil()->grid();
+  const soil::GridSpec& spec = grid.spec();
+  for (int iy = 0; iy < spec.cells_y; ++iy) {
+    for (int ix = 0; ix < spec.cells_x; ++ix) {
+      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
+      const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
+      if (inside(x, y)) grid.set_cell_surface_m(ix, iy, level_m);
+    }
+  }
+}
+
 // Standing unpowered on soft sand the rover sinks in — the centre wheels, under the centre unit's
 // 30 kg, deepest: 1–3 cm below the 0.115 m rim (the blades' 1 cm more) — and stays put: the soil
 // holds it without a push along the ground.
@@ -208,18 +223,11 @@ TEST(RoverSoftSoil, TheChassisRestsOnAMoundOfSoil) {
     run(physics, 500);
     const GroundTruth start = physics.truth();
     if (mound) {
-      soil::SoilGrid& grid = physics.soft_soil()->grid();
-      const soil::GridSpec& spec = grid.spec();
       const double axle_x = start.wheel_position_m[kFrontLeft][0];
-      for (int iy = 0; iy < spec.cells_y; ++iy) {
-        for (int ix = 0; ix < spec.cells_x; ++ix) {
-          const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
-          const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
-          if (std::abs(x - axle_x) < 0.06 && std::abs(y) < 0.15) {
-            grid.set_cell_surface_m(ix, iy, 0.10);
-          }
-        }
-      }
+      raise_soil(
+          physics,
+          [&](double x, double y) { return std::abs(x - axle_x) < 0.06 && std::abs(y) < 0.15; },
+          0.10);
     }
     run(physics, 1000);
     expect_healthy(physics);
@@ -245,16 +253,10 @@ TEST(RoverSoftSoil, TheFieldIsMetOnlyWhereTheChassisNearsTheSoil) {
     physics.step();
     ASSERT_FALSE(physics.soil_field_met()) << "step " << i;
   }
-  soil::SoilGrid& grid = physics.soft_soil()->grid();
-  const soil::GridSpec& spec = grid.spec();
   const double axle_x = physics.truth().wheel_position_m[kFrontLeft][0];
-  for (int iy = 0; iy < spec.cells_y; ++iy) {
-    for (int ix = 0; ix < spec.cells_x; ++ix) {
-      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
-      const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
-      if (std::abs(x - axle_x) < 0.06 && std::abs(y) < 0.15) grid.set_cell_surface_m(ix, iy, 0.10);
-    }
-  }
+  raise_soil(
+      physics, [&](double x, double y) { return std::abs(x - axle_x) < 0.06 && std::abs(y) < 0.15; },
+      0.10);
   run(physics, 10);
   EXPECT_TRUE(physics.soil_field_met());
   RoverPhysics rigid(Params{}, TerrainSpec{});
@@ -268,15 +270,8 @@ TEST(RoverSoftSoil, TheFieldIsMetOnlyWhereTheChassisNearsTheSoil) {
 // contacts a geom pair; the contact buffer holds them all (no warning: expect_healthy).
 TEST(RoverSoftSoil, BothAxlesRestOnARidgeWithinTheContactBuffer) {
   RoverPhysics physics(Params{}, soft_flat());
-  soil::SoilGrid& grid = physics.soft_soil()->grid();
-  const soil::GridSpec& spec = grid.spec();
-  for (int iy = 0; iy < spec.cells_y; ++iy) {
-    for (int ix = 0; ix < spec.cells_x; ++ix) {
-      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
-      const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
-      if (std::abs(x) < 0.75 && std::abs(y) < 0.18) grid.set_cell_surface_m(ix, iy, 0.08);
-    }
-  }
+  raise_soil(
+      physics, [](double x, double y) { return std::abs(x) < 0.75 && std::abs(y) < 0.18; }, 0.08);
   run(physics, 1500);
   expect_healthy(physics);
   const GroundTruth end = physics.truth();
