@@ -31,15 +31,13 @@ void copy_heightfield(mjModel& model, const Heightfield& field) {
   }
 }
 
-// The soil's field at the initial level everywhere (terrain_mjcf.hpp): kSoilFieldBelowM above
-// its elevation 0.
+// The soil's field at the initial level everywhere (terrain_mjcf.hpp): no rise.
 void level_soil_field(mjModel& model) {
   const int id = require_id(model, mjOBJ_HFIELD, kSoilFieldName);
   float* data = model.hfield_data + model.hfield_adr[id];
   const auto count = static_cast<std::size_t>(model.hfield_nrow[id]) *
                      static_cast<std::size_t>(model.hfield_ncol[id]);
-  std::fill(data, data + count,
-            static_cast<float>(kSoilFieldBelowM / (kSoilFieldBelowM + kSoilFieldAboveM)));
+  std::fill(data, data + count, soil_field_elevation(0.0));
 }
 
 }  // namespace

@@ -41,22 +41,28 @@ void check_initial_joint(const Params& params, std::size_t motor) {
   }
 }
 
+// The height of the terrain's geoms (group 0) under (x, y), by a ray cast down from
+// kRayStartHeightM; NaN where it meets none.
+double terrain_ray_height_m(const mjModel& model, mjData& data, double x_m, double y_m) {
+  std::array<mjtByte, mjNGROUP> terrain_only{};
+  terrain_only[0] = 1;
+  const mjtNum start[3] = {x_m, y_m, kRayStartHeightM};
+  const mjtNum down[3] = {0.0, 0.0, -1.0};
+  int geom = -1;
+  const mjtNum distance = mj_ray(&model, &data, start, down, terrain_only.data(), 1, -1, &geom);
+  return distance >= 0.0 ? kRayStartHeightM - distance : std::numeric_limits<double>::quiet_NaN();
+}
+
 // The highest ground under the wheels' footprints, by casting rays down onto the terrain only.
 double ground_height_under_wheels_m(const mjModel& model, mjData& data, const RoverModelIds& ids,
                                     double radius_m) {
-  std::array<mjtByte, mjNGROUP> terrain_only{};
-  terrain_only[0] = 1;
   double highest_m = -kRayStartHeightM;
-  const mjtNum down[3] = {0.0, 0.0, -1.0};
   for (int body : ids.wheel_body) {
     for (double dx : {-0.7 * radius_m, 0.0, 0.7 * radius_m}) {
       for (double dy : {-kWheelWidthM / 2, 0.0, kWheelWidthM / 2}) {
-        const mjtNum start[3] = {data.xpos[3 * body] + dx, data.xpos[3 * body + 1] + dy,
-                                 kRayStartHeightM};
-        int geom = -1;
-        const mjtNum distance =
-            mj_ray(&model, &data, start, down, terrain_only.data(), 1, -1, &geom);
-        if (distance >= 0.0) highest_m = std::max(highest_m, kRayStartHeightM - distance);
+        const double height_m = terrain_ray_height_m(model, data, data.xpos[3 * body] + dx,
+                                                     data.xpos[3 * body + 1] + dy);
+        if (!std::isnan(height_m)) highest_m = std::max(highest_m, height_m);
       }
     }
   }
@@ -387,14 +393,7 @@ soil::SoftSoil* RoverPhysics::soft_soil() {
 }
 
 double RoverPhysics::terrain_height_m(double x_m, double y_m) const {
-  std::array<mjtByte, mjNGROUP> terrain_only{};
-  terrain_only[0] = 1;
-  const mjtNum start[3] = {x_m, y_m, kRayStartHeightM};
-  const mjtNum down[3] = {0.0, 0.0, -1.0};
-  int geom = -1;
-  const mjtNum distance = mj_ray(impl_->model.get(), impl_->data.get(), start, down,
-                                 terrain_only.data(), 1, -1, &geom);
-  return distance >= 0.0 ? kRayStartHeightM - distance : std::numeric_limits<double>::quiet_NaN();
+  return terrain_ray_height_m(*impl_->model, *impl_->data, x_m, y_m);
 }
 
 bool RoverPhysics::soil_field_met() const {

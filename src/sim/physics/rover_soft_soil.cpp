@@ -54,19 +54,19 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
     wheels[wheel].handedness =
         is_left_wheel(wheel) ? soil::BladeHandedness::kRight : soil::BladeHandedness::kLeft;
   }
-  const double slope = terrain.kind == TerrainKind::kSlope ? std::tan(terrain.slope_rad) : 0.0;
+  const double slope_rad = ground_slope_rad(terrain);
+  const double slope = std::tan(slope_rad);
   soft_soil.emplace(
       *terrain.ground.soil, kSoftSoilGrid, [slope](double x_m, double) { return x_m * slope; },
       wheels);
   soil_field = require_id(*model, mjOBJ_HFIELD, kSoilFieldName);
   soil_field_geom = require_id(*model, mjOBJ_GEOM, kSoilFieldName);
-  const double slope_rad = terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
   soil_field_cos = std::cos(slope_rad);
   soil_field_period_steps =
       std::max(1, static_cast<int>(std::lround(kSoilFieldPeriodS / model->opt.timestep)));
   for (int ix = 0; ix < kSoftSoilGrid.cells_x; ++ix) {
-    soil_field_plane.push_back(
-        (kSoftSoilGrid.origin_x_m + (ix + 0.5) * kSoftSoilGrid.cell_m) * std::tan(slope_rad));
+    soil_field_plane.push_back((kSoftSoilGrid.origin_x_m + (ix + 0.5) * kSoftSoilGrid.cell_m) *
+                               slope);
   }
   soil_field_normal = {-std::sin(slope_rad), 0.0, std::cos(slope_rad)};
   for (int geom = 0; geom < model->ngeom; ++geom) {
@@ -90,14 +90,12 @@ void RoverPhysics::Impl::copy_soil_to_field() {
   const mjModel& m = *model;
   const int columns = m.hfield_ncol[soil_field];
   float* field = m.hfield_data + m.hfield_adr[soil_field];
-  constexpr double kRange = kSoilFieldBelowM + kSoilFieldAboveM;
   for (int iy = box.min_y; iy <= box.max_y; ++iy) {
     for (int ix = box.min_x; ix <= box.max_x; ++ix) {
       const double rise =
           (grid.cell_surface_m(ix, iy) - soil_field_plane[static_cast<std::size_t>(ix)]) *
           soil_field_cos;
-      field[iy * columns + ix] =
-          static_cast<float>(std::clamp((rise + kSoilFieldBelowM) / kRange, 0.0, 1.0));
+      field[iy * columns + ix] = soil_field_elevation(rise);
     }
   }
   grid.clear_changed();

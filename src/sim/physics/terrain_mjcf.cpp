@@ -19,9 +19,7 @@ XmlWriter::Attributes material_attributes(const Material& material) {
 }
 
 // The ground's tilt: nose-up for +x uphill is a negative rotation about y (right-hand rule).
-double ground_pitch_rad(const TerrainSpec& terrain) {
-  return terrain.kind == TerrainKind::kSlope ? -terrain.slope_rad : 0.0;
-}
+double ground_pitch_rad(const TerrainSpec& terrain) { return -ground_slope_rad(terrain); }
 
 void write_plane(XmlWriter& xml, const Material& material, const std::array<double, 3>& pos_m,
                  double pitch_rad) {
@@ -63,7 +61,7 @@ void write_obstacle(XmlWriter& xml, const Obstacle& obstacle, std::size_t index)
 // under the initial level. Like the plane (conaffinity 2), met by the chassis, not the wheels.
 void write_soil_field(XmlWriter& xml, const TerrainSpec& terrain) {
   XmlWriter::Attributes attributes = material_attributes(terrain.ground);
-  const double slope_rad = terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
+  const double slope_rad = ground_slope_rad(terrain);
   const soil::GridSpec& grid = kSoftSoilGrid;
   const double x_m = grid.origin_x_m + 0.5 * grid.cells_x * grid.cell_m;
   const double y_m = grid.origin_y_m + 0.5 * grid.cells_y * grid.cell_m;
@@ -103,7 +101,7 @@ void write_terrain_assets(XmlWriter& xml, const TerrainSpec& terrain) {
   if (terrain.ground.soil) {
     // Vertices at the cells' centres: (cells − 1) cells apart, measured along the slope.
     const soil::GridSpec& grid = kSoftSoilGrid;
-    const double slope_rad = terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
+    const double slope_rad = ground_slope_rad(terrain);
     xml.leaf("hfield",
              {{"name", kSoilFieldName},
               {"nrow", std::to_string(grid.cells_y)},

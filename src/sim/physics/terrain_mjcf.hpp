@@ -6,8 +6,8 @@
 #include <array>
 
 #include "sim/physics/terrain.hpp"
-#include "sim/soil/soil_grid.hpp"
 #include "sim/physics/xml_writer.hpp"
+#include "sim/soil/soil_grid.hpp"
 
 namespace marsokhod::sim {
 
@@ -29,6 +29,17 @@ inline constexpr const char* kSoilFieldName = "soil";
 inline constexpr double kSoilFieldBelowM = 0.25;  // deeper than a wheel's radius: any hole it digs
 inline constexpr double kSoilFieldAboveM = 0.15;  // rims and spoil; under the centre unit's belly
 inline constexpr double kSoilFieldBaseM = 0.05;   // the field's thickness under its lowest level
+
+// The ground's slope α: the terrain's on a slope, 0 on flat and obstacle ground.
+inline double ground_slope_rad(const TerrainSpec& terrain) {
+  return terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
+}
+// A vertex's datum in the soil's field for a rise (along the ground's normal) over the initial
+// level: its share of the field's range, clamped to it.
+inline float soil_field_elevation(double rise_m) {
+  const double share = (rise_m + kSoilFieldBelowM) / (kSoilFieldBelowM + kSoilFieldAboveM);
+  return static_cast<float>(share < 0.0 ? 0.0 : (share > 1.0 ? 1.0 : share));
+}
 
 // A quaternion (w, x, y, z) of R = Rz(yaw)·Ry(pitch)·Rx(roll).
 std::array<double, 4> quaternion_from_roll_pitch_yaw(const std::array<double, 3>& rpy_rad);

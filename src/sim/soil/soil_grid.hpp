@@ -66,13 +66,13 @@ struct Cylinder {
   double width_m = 0.15;
 };
 
-// The cells a press touched, for excavation and relaxation to act on.
 // A box of cells, inclusive; empty when max < min.
 struct CellBox {
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;
   bool empty() const { return max_x < min_x || max_y < min_y; }
 };
 
+// The cells a press touched, for excavation and relaxation to act on.
 struct Footprint {
   std::vector<int> contact_cells;                    // cell indices, ascending
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // their box (empty: max < min)
