@@ -42,7 +42,6 @@ WheelSoilContact::WheelSoilContact(SoilParams soil, WheelGeometry wheel)
   const auto size = static_cast<std::size_t>(wheel_.lanes * wheel_.arc_samples);
   shear_t_.assign(size, 0.0);
   shear_y_.assign(size, 0.0);
-  scratch_.assign(2 * static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   cosines_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   sample_sin_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   sample_cos_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
@@ -86,7 +85,7 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
   const double reach = std::max(shift, 1.0);
   const int near = std::clamp(static_cast<int>(std::ceil(reach - 0.5)), 0, samples);
   if (near == 1) {  // the usual case, one sample: its cosine alone
-    cosines_[0] = std::cos(arc.entry_rad - 0.25 * spacing * span);
+    cosines_[0] = sin_cos(arc.entry_rad - 0.25 * spacing * span).cos;
   } else if (near > 1) {
     AngleSteps angle(arc.entry_rad - 0.25 * spacing * span, -0.5 * spacing * span);
     for (int k = 0; k < near; ++k, angle.advance()) {
@@ -99,30 +98,30 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
       cosines_[static_cast<std::size_t>(k)] = angle.cos();
     }
   }
-  // Both components move with the rim: the same interpolation for each.
+  // Both components move with the rim: the same interpolation for each. The rim moved `whole`
+  // samples and a fraction: sample k takes (1 − fraction)·j[k − whole] + fraction·j[k − whole − 1]
+  // while k − shift > 0, a ramp from the entry (j = 0 at −0.5) within half a sample of it, else 0.
+  // In place from the exit back: a sample reads only samples before it, or itself.
   double* jt = shear_t_.data() + lane * samples;
   double* jy = shear_y_.data() + lane * samples;
-  std::copy(jt, jt + samples, scratch_.begin());
-  std::copy(jy, jy + samples, scratch_.begin() + samples);
-  const double* old_t = scratch_.data();
-  const double* old_y = scratch_.data() + samples;
   const double lateral_step = -lateral_mps * dt_s;
-  for (int k = 0; k < samples; ++k) {
-    const double from = k - shift;  // sample coordinate; the entry (j = 0) is at −0.5
-    double value_t = 0.0, value_y = 0.0;
-    if (from > 0.0) {
-      const int below = static_cast<int>(from);
-      const int above = std::min(below + 1, samples - 1);
-      const double weight = from - below;
-      value_t = (1.0 - weight) * old_t[below] + weight * old_t[above];
-      value_y = (1.0 - weight) * old_y[below] + weight * old_y[above];
-    } else if (from > -0.5) {
-      value_t = old_t[0] * (from + 0.5) / 0.5;
-      value_y = old_y[0] * (from + 0.5) / 0.5;
-    }
-    const double cosine = cosines_[static_cast<std::size_t>(k)];
-    jt[k] = value_t + (rs * spin_radps - travel_mps * cosine) * dt_s;
+  const double spin_term = rs * spin_radps;
+  const int whole = static_cast<int>(std::min(shift, static_cast<double>(samples)));
+  const double fraction = shift - whole;
+  const int first = std::min(whole + 1, samples);  // the first sample fed from within the arc
+  for (int k = samples - 1; k >= first; --k) {
+    const int at = k - whole;
+    const double value_t = (1.0 - fraction) * jt[at] + fraction * jt[at - 1];
+    const double value_y = (1.0 - fraction) * jy[at] + fraction * jy[at - 1];
+    jt[k] = value_t + (spin_term - travel_mps * cosines_[static_cast<std::size_t>(k)]) * dt_s;
     jy[k] = value_y + lateral_step;
+  }
+  const double entry_t = jt[0], entry_y = jy[0];
+  for (int k = first - 1; k >= 0; --k) {
+    const double from = k - shift;  // in (−0.5, 0]: on the ramp from the entry
+    const double ramp = from > -0.5 ? (from + 0.5) / 0.5 : 0.0;
+    jt[k] = entry_t * ramp + (spin_term - travel_mps * cosines_[static_cast<std::size_t>(k)]) * dt_s;
+    jy[k] = entry_y * ramp + lateral_step;
   }
 }
 
@@ -163,9 +162,7 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
       }
       sigmas[k] = cos_equivalent;
     }
-    for (int k = 0; k < samples; ++k) {
-      sigmas[k] = normal_stress_from_cos_pa(modulus_pa_, arc, r, sigmas[k]);
-    }
+    normal_stresses_from_cos_pa(modulus_pa_, arc, r, sigmas, samples);
   }
   // Then the blades' mobilised shares (the exponentials again in a loop of their own).
   const BladeFrame blade = blade_frame(blades_, frame.handedness);
@@ -175,8 +172,11 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
     const double inverse_K = strength_.inverse_shear_modulus_per_m;
     for (int k = 0; k < samples; ++k) {
       const double jt = shear_t_[base + k], jy = shear_y_[base + k];
-      across[k] = detail::mobilised(blade.across_displacement_m(jt, jy), inverse_K);
-      along[k] = detail::mobilised(blade.along_displacement_m(jt, jy), inverse_K);
+      const DoublePair shares = detail::mobilised(
+          DoublePair{blade.across_displacement_m(jt, jy), blade.along_displacement_m(jt, jy)},
+          inverse_K);
+      across[k] = shares[0];
+      along[k] = shares[1];
     }
   }
   double fx = 0.0, fy = 0.0, fz = 0.0, mx = 0.0, my = 0.0, mz = 0.0;

@@ -108,7 +108,7 @@ class WheelSoilContact {
   double modulus_pa_ = 0.0;  // k_c/b + k_φ
   double passive_ = 1.0;     // N_φ of the sidewall
   int direction_ = 1;
-  std::vector<double> shear_t_, shear_y_, scratch_, cosines_;
+  std::vector<double> shear_t_, shear_y_, cosines_;
   // Per arc sample of the lane being summed: sin θ, cos θ, σ, the blades' mobilised shares
   // across and along (scratch of add_lane_stresses).
   std::vector<double> sample_sin_, sample_cos_, sample_sigma_, share_across_, share_along_;

@@ -152,24 +152,20 @@ double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double
   return sidewall_resistance_n(soil, passive_earth_coefficient(soil), rim_radius_m, sinkage_m);
 }
 
+// Over the segment below the surface, h = r − z from the centre: its area
+//   A = r² acos(h/r) − h √(r² − h²)
+// and the integral of the depth over it, ∫_h^r (y − h)·2√(r² − y²) dy = ⅔ (r² − h²)^(3/2) − h A, so
+//   F = 2c√N_φ · A + ρ g N_φ · (⅔ (r² − h²)^(3/2) − h A).
 double sidewall_resistance_n(const SoilParams& soil, double passive, double rim_radius_m,
                              double sinkage_m) {
   const double z = std::clamp(sinkage_m, 0.0, rim_radius_m);
   if (z <= 0.0) return 0.0;
-  const double weight_density = soil.bulk_density_kgpm3 * soil.gravity_mps2;
-  constexpr int kSamples = 16;
-  const double step = z / kSamples;
-  double force = 0.0;
-  for (int k = 0; k < kSamples; ++k) {
-    const double depth = (k + 0.5) * step;  // below the surface
-    const double from_center = rim_radius_m - z + depth;
-    const double chord =
-        2.0 * std::sqrt(std::max(rim_radius_m * rim_radius_m - from_center * from_center, 0.0));
-    const double pressure =
-        weight_density * depth * passive + 2.0 * soil.cohesion_pa * std::sqrt(passive);
-    force += pressure * chord * step;
-  }
-  return force;
+  const double r = rim_radius_m, h = r - z;
+  const double half_chord = std::sqrt(std::max(r * r - h * h, 0.0));
+  const double area = r * r * std::acos(h / r) - h * half_chord;
+  const double depth_moment = 2.0 / 3.0 * half_chord * half_chord * half_chord - h * area;
+  return 2.0 * soil.cohesion_pa * std::sqrt(passive) * area +
+         soil.bulk_density_kgpm3 * soil.gravity_mps2 * passive * depth_moment;
 }
 
 }  // namespace marsokhod::sim::soil

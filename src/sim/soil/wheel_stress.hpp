@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/soil/fast_math.hpp"
 #include "sim/soil/soil_params.hpp"
 
 namespace marsokhod::sim::soil {
@@ -60,9 +61,14 @@ double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double ri
 double equivalent_angle_rad(const ContactArc& arc, double theta_rad);
 
 // σ from cos θ*: (k_c/b + k_φ)·(r·max(cos θ* − cos θ1, 0))^n, the power as exp(n·ln x) (within a
-// few units in the last place of std::pow, at a third of its cost; n = 1 exactly is x itself).
+// few units in the last place of std::pow, at a third of its cost; n = 1 exactly is x itself; the
+// exponential exp_nonpositive, fast_math.hpp).
 inline double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc,
                                         double rim_radius_m, double cos_equivalent);
+// The same over an array in place (cosines in, stresses out), two samples' exponentials at a
+// time: the same bits as one by one.
+inline void normal_stresses_from_cos_pa(double modulus_pa, const ContactArc& arc,
+                                        double rim_radius_m, double* values, int count);
 
 // Signed Janosi–Hanamoto shear of soil on soil and of soil on metal, for a signed displacement.
 double soil_shear_pa(const SoilParams& soil, double normal_pa, double displacement_m);
@@ -148,9 +154,17 @@ double sidewall_resistance_n(const SoilParams& soil, double passive_coefficient,
 
 namespace detail {
 
-// Janosi–Hanamoto's mobilised share 1 − e^(−|j|/K), signed as j.
+// Janosi–Hanamoto's mobilised share 1 − e^(−|j|/K), signed as j (exp_nonpositive: fast_math.hpp).
 inline double mobilised(double displacement_m, double inverse_shear_modulus_per_m) {
-  const double share = 1.0 - std::exp(-std::abs(displacement_m) * inverse_shear_modulus_per_m);
+  const double share =
+      1.0 - exp_nonpositive(-std::abs(displacement_m) * inverse_shear_modulus_per_m);
+  return displacement_m < 0.0 ? -share : share;
+}
+
+// The same for two displacements at once (the blade's across and along), the same bits.
+inline DoublePair mobilised(DoublePair displacement_m, double inverse_shear_modulus_per_m) {
+  const DoublePair magnitude = {std::abs(displacement_m[0]), std::abs(displacement_m[1])};
+  const DoublePair share = 1.0 - exp_nonpositive(-magnitude * inverse_shear_modulus_per_m);
   return displacement_m < 0.0 ? -share : share;
 }
 
@@ -161,7 +175,28 @@ inline double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc
   const double depth = rim_radius_m * std::max(cos_equivalent - arc.cos_entry, 0.0);
   if (depth <= 0.0) return 0.0;
   const double n = arc.sinkage_exponent;
-  return modulus_pa * (n == 1.0 ? depth : std::exp(n * std::log(depth)));
+  if (n == 1.0) return modulus_pa * depth;
+  const double exponent = n * std::log(depth);  // < 0 while the depth is under 1 m
+  return modulus_pa * (exponent <= 0.0 ? exp_nonpositive(exponent) : std::exp(exponent));
+}
+
+inline void normal_stresses_from_cos_pa(double modulus_pa, const ContactArc& arc,
+                                        double rim_radius_m, double* values, int count) {
+  const double n = arc.sinkage_exponent;
+  int k = 0;
+  for (; k + 1 < count && n != 1.0; k += 2) {
+    const double first = rim_radius_m * std::max(values[k] - arc.cos_entry, 0.0);
+    const double second = rim_radius_m * std::max(values[k + 1] - arc.cos_entry, 0.0);
+    if (!(first > 0.0 && second > 0.0)) break;  // the rest one by one
+    const DoublePair exponent = {n * std::log(first), n * std::log(second)};
+    if (!(exponent[0] <= 0.0 && exponent[1] <= 0.0)) break;
+    const DoublePair power = exp_nonpositive(exponent);
+    values[k] = modulus_pa * power[0];
+    values[k + 1] = modulus_pa * power[1];
+  }
+  for (; k < count; ++k) {
+    values[k] = normal_stress_from_cos_pa(modulus_pa, arc, rim_radius_m, values[k]);
+  }
 }
 
 inline BladeFrame blade_frame(const BladeAxes& blades, int handedness) {

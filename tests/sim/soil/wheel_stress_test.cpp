@@ -171,7 +171,26 @@ TEST(WheelStress, SidewallIsRankinesPassivePressureOnTheSegment) {
   const double segment = r * r * (half_angle - std::sin(half_angle) * std::cos(half_angle));
   EXPECT_NEAR(sidewall_resistance_n(soil, r, z),
               2.0 * soil.cohesion_pa * std::sqrt(passive) * segment,
-              0.01 * 2.0 * soil.cohesion_pa * std::sqrt(passive) * segment);
+              1e-12 * 2.0 * soil.cohesion_pa * std::sqrt(passive) * segment);
+}
+
+TEST(WheelStress, SidewallsWeightTermIsTheDepthIntegratedOverTheSegment) {
+  // Friction only: ρ g N_φ ∫ depth · chord, against a fine midpoint sum over the depth.
+  SoilParams soil = dry_sand();
+  soil.cohesion_pa = 0.0;
+  const double passive = passive_earth_coefficient(soil);
+  for (const double z : {0.005, 0.03, 0.115}) {
+    const double r = 0.115;
+    constexpr int kSamples = 200000;
+    double integral = 0.0;
+    for (int k = 0; k < kSamples; ++k) {
+      const double depth = (k + 0.5) * z / kSamples;
+      const double from_center = r - z + depth;
+      integral += depth * 2.0 * std::sqrt(r * r - from_center * from_center) * z / kSamples;
+    }
+    const double expected = soil.bulk_density_kgpm3 * soil.gravity_mps2 * passive * integral;
+    EXPECT_NEAR(sidewall_resistance_n(soil, r, z), expected, 1e-6 * expected) << z;
+  }
 }
 
 TEST(WheelStress, RejectsALoadTheSoilCannotCarry) {

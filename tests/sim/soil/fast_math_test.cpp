@@ -1,0 +1,99 @@
+// exp_nonpositive against std::exp: within 2 units in the last place over its range, exact at 0,
+// held at its floor below −708; its pair lane by lane the same bits; sin_cos against std::sin and
+// std::cos.
+#include "sim/soil/fast_math.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace marsokhod::sim::soil {
+namespace {
+
+// 2 ulp of a result in [2^e, 2^(e+1)) is 2^(e−51): relative to the result at most 2^−51.
+constexpr double kTwoUlpRelative = 4.441e-16;
+
+TEST(FastExp, WithinTwoUnitsInTheLastPlaceOfStdExp) {
+  std::mt19937_64 random(14);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst = 0.0;
+  // Uniform over each binade from 2^−30 to 2^9 (the soil's arguments lie within 0…−40), and the
+  // whole range down to the floor.
+  for (int binade = -30; binade <= 9; ++binade) {
+    for (int i = 0; i < 20000; ++i) {
+      const double x = -std::ldexp(1.0 + unit(random), binade);
+      if (x < kExpNonPositiveFloor) continue;
+      worst = std::max(worst, std::abs(exp_nonpositive(x) - std::exp(x)) / std::exp(x));
+    }
+  }
+  for (int i = 0; i <= 70800; ++i) {  // every 0.01 from 0 to −708, where the table's index wraps
+    const double x = -0.01 * i;
+    worst = std::max(worst, std::abs(exp_nonpositive(x) - std::exp(x)) / std::exp(x));
+  }
+  EXPECT_LE(worst, kTwoUlpRelative);
+  EXPECT_GT(worst, 0.0);  // it is not std::exp itself
+}
+
+TEST(FastExp, ExactWhereTheReductionIsExact) {
+  EXPECT_EQ(exp_nonpositive(0.0), 1.0);
+  EXPECT_EQ(exp_nonpositive(-0.0), 1.0);
+  // x = −m·ln2 to the double nearest: e^x = 2^−m within the rounding of x itself.
+  for (int m = 1; m <= 1000; m += 37) {
+    const double x = -m * 0.6931471805599453;
+    EXPECT_NEAR(exp_nonpositive(x) / std::ldexp(1.0, -m), 1.0, 1e-13) << m;
+  }
+}
+
+TEST(FastExp, HeldAtItsFloorAndMonotone) {
+  const double floor_value = exp_nonpositive(kExpNonPositiveFloor);
+  EXPECT_NEAR(floor_value / std::exp(kExpNonPositiveFloor), 1.0, kTwoUlpRelative);
+  EXPECT_EQ(exp_nonpositive(-709.0), floor_value);
+  EXPECT_EQ(exp_nonpositive(-1e300), floor_value);
+  EXPECT_EQ(exp_nonpositive(-INFINITY), floor_value);
+  // 1 − e^x, the mobilised share, is 1 from about −38 on, as with std::exp.
+  EXPECT_EQ(1.0 - exp_nonpositive(-38.0), 1.0 - std::exp(-38.0));
+  double previous = 1.0;
+  for (int i = 1; i <= 200000; ++i) {
+    const double value = exp_nonpositive(-1e-4 * i);
+    ASSERT_LE(value, previous) << i;
+    previous = value;
+  }
+}
+
+TEST(FastExp, APairGivesTheBitsOfTwoSingles) {
+  std::mt19937_64 random(15);
+  std::uniform_real_distribution<double> argument(-60.0, 0.0);
+  for (int i = 0; i < 100000; ++i) {
+    const double a = argument(random), b = i % 7 == 0 ? -1000.0 : argument(random);
+    const DoublePair pair = exp_nonpositive(DoublePair{a, b});
+    ASSERT_EQ(pair[0], exp_nonpositive(a)) << a;
+    ASSERT_EQ(pair[1], exp_nonpositive(b)) << b;
+  }
+}
+
+TEST(FastSinCos, WithinTwoUnitsInTheLastPlaceOfOne) {
+  double worst_sin = 0.0, worst_cos = 0.0;
+  for (int i = -200000; i <= 200000; ++i) {  // [−π/2, π/2] and a little beyond, to 1.6
+    const double x = 1.6 * i / 200000.0;
+    const SinCos value = sin_cos(x);
+    worst_sin = std::max(worst_sin, std::abs(value.sin - std::sin(x)));
+    worst_cos = std::max(worst_cos, std::abs(value.cos - std::cos(x)));
+  }
+  EXPECT_LE(worst_sin, kTwoUlpRelative);  // values up to 1: absolute
+  EXPECT_LE(worst_cos, kTwoUlpRelative);
+  EXPECT_EQ(sin_cos(0.0).sin, 0.0);
+  EXPECT_EQ(sin_cos(0.0).cos, 1.0);
+  EXPECT_EQ(sin_cos(-0.3).sin, -sin_cos(0.3).sin);  // odd and even, exactly
+  EXPECT_EQ(sin_cos(-0.3).cos, sin_cos(0.3).cos);
+}
+
+TEST(FastSinCos, BeyondThePolynomialItIsStdSinAndCos) {
+  for (const double x : {1.7, -2.0, 3.0, 100.0}) {
+    EXPECT_EQ(sin_cos(x).sin, std::sin(x)) << x;
+    EXPECT_EQ(sin_cos(x).cos, std::cos(x)) << x;
+  }
+}
+
+}  // namespace
+}  // namespace marsokhod::sim::soil
