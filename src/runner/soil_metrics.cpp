@@ -26,8 +26,8 @@ const std::vector<std::string>& soil_metric_names() {
   static const std::vector<std::string> names = {
       "soil_cut_m3",          "soil_fill_m3",           "soil_disturbed_m3",
       "soil_compacted_m3",    "soil_mean_compaction_m", "soil_max_depth_m",
-      "final_exterior_rut_depth_m", "final_center_rut_depth_m", "soil_disturbed_per_m_m3",
-      "soil_compacted_per_m_m3"};
+      "final_exterior_rut_depth_m", "final_center_rut_depth_m", "final_trench_depth_m",
+      "soil_disturbed_per_m_m3", "soil_compacted_per_m_m3"};
   return names;
 }
 
@@ -54,6 +54,7 @@ void add_soil_metrics(const Session& session, double distance_m,
       grid, truth, std::array{kFrontLeft, kFrontRight, kBackLeft, kBackRight});
   m["final_center_rut_depth_m"] =
       mean_rut_depth_m(grid, truth, std::array{kCenterLeft, kCenterRight});
+  m["final_trench_depth_m"] = m["final_exterior_rut_depth_m"] - m["final_center_rut_depth_m"];
   if (distance_m >= kMinProgressM) {
     m["soil_disturbed_per_m_m3"] = disturbed / distance_m;
     m["soil_compacted_per_m_m3"] = v.compacted_m3 / distance_m;

@@ -13,6 +13,8 @@
 //   final_center_rut_depth_m    below its initial surface under the wheel at the end (the deepest
 //                               cell centre within ±7.5 cm, half the wheel's width, of the hub in
 //                               x and y): a trench's depth; the two centre wheels'
+//   final_trench_depth_m        final_exterior_rut_depth_m − final_center_rut_depth_m: how much
+//                               deeper the exterior wheels stand than the centre ones
 //   soil_disturbed_per_m_m3     the same per metre of progress, over distance_m (the net
 //   soil_compacted_per_m_m3     displacement); only when the rover got at least kMinProgressM
 //                               from its start, else a ratio to noise

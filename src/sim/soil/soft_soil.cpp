@@ -21,8 +21,14 @@ constexpr double kTouchM = 1e-4;
 
 SoftSoil::SoftSoil(SoilParams soil, GridSpec grid,
                    const std::function<double(double, double)>& surface_m,
-                   const std::vector<WheelGeometry>& wheels)
-    : soil_(soil), grid_(grid, soil, surface_m) {
+                   const std::vector<WheelGeometry>& wheels, double yield_period_s)
+    : soil_(soil), grid_(grid, soil, surface_m), yield_period_s_(yield_period_s) {
+  if (!(yield_period_s >= 0.0 && yield_period_s <= 0.1)) {
+    std::ostringstream message;
+    message << "SoftSoil: yield_period_s must be within [0, 0.1] s (0: every step), got "
+            << yield_period_s;
+    throw std::invalid_argument(message.str());
+  }
   contacts_.reserve(wheels.size());
   std::size_t lanes = 0;
   for (const WheelGeometry& wheel : wheels) {
@@ -31,10 +37,13 @@ SoftSoil::SoftSoil(SoilParams soil, GridSpec grid,
   }
   lane_sinkage_.resize(lanes);
   lane_exit_.resize(lanes);
+  excavation_m3_.assign(wheels.size(), 0.0);
 }
 
 void SoftSoil::level() {
   grid_.level();
+  since_yield_s_ = 0.0;
+  std::fill(excavation_m3_.begin(), excavation_m3_.end(), 0.0);
   for (WheelSoilContact& contact : contacts_) contact = WheelSoilContact(soil_, contact.wheel());
 }
 
@@ -128,38 +137,59 @@ std::vector<WheelWrench> SoftSoil::step(std::span<const WheelKinematics> wheels,
     const std::span<double> sinkage(lane_sinkage_.data(), lanes);
     const std::span<double> exit(lane_exit_.data(), lanes);
     const Vec3 normal = ground_normal(wheels[i], i);
-    find_lane_contacts(i, wheels[i], normal, sinkage, exit);
+    const int touching = find_lane_contacts(i, wheels[i], normal, sinkage, exit);
     wrenches.push_back(contacts_[i].step(wheels[i], normal, sinkage, exit, dt_s));
+    if (wrenches.back().diagnostics.in_contact) {
+      excavation_m3_[i] += excavation_rate_m3ps(i, wheels[i], normal, touching) * dt_s;
+    }
   }
-  for (std::size_t i = 0; i < wheels.size(); ++i) deform(i, wheels[i], wrenches[i], dt_s);
+  since_yield_s_ += dt_s;
+  if (since_yield_s_ + 0.5 * dt_s >= yield_period_s_) {
+    for (std::size_t i = 0; i < wheels.size(); ++i) {
+      deform(i, wheels[i], excavation_m3_[i]);
+      excavation_m3_[i] = 0.0;
+    }
+    since_yield_s_ = 0.0;
+  }
   return wrenches;
 }
 
-// The grid yields under the wheel as it stood at the start of the step: its press, then the
-// excavation by its blades over the lanes that touch the soil as pressed so far (the normal and
-// the lanes found again: the wheels before it have moved soil), then the repose around it.
-void SoftSoil::deform(std::size_t wheel, const WheelKinematics& kinematics,
-                      const WheelWrench& wrench, double dt_s) {
+// The soil the blades carry out of the rut per second: f_e · b · h · max(0, r_s ω − v) · (lanes in
+// contact / lanes), v along the rolling direction.
+double SoftSoil::excavation_rate_m3ps(std::size_t wheel, const WheelKinematics& kinematics,
+                                      const Vec3& normal, int touching_lanes) const {
+  const WheelGeometry& geometry = contacts_[wheel].wheel();
+  if (!geometry.bladed || touching_lanes == 0) return 0.0;
+  const Vec3 rolling = cross(kinematics.axle, normal);
+  const Vec3 forward = (1.0 / std::max(norm(rolling), 1e-12)) * rolling;
+  const double direction = contacts_[wheel].direction();
+  const double slip_speed = direction * (geometry.shear_radius_m() * kinematics.spin_radps -
+                                         dot(kinematics.velocity_mps, forward));
+  return soil_.excavation_fraction * geometry.width_m * geometry.blade_height_m *
+         std::max(slip_speed, 0.0) * touching_lanes / geometry.lanes;
+}
+
+// The grid yields under the wheel as it stands: its press, then the excavation of the soil its
+// blades carried since the last yield, then the repose around it.
+void SoftSoil::deform(std::size_t wheel, const WheelKinematics& kinematics, double excavated_m3) {
   const WheelGeometry& geometry = contacts_[wheel].wheel();
   const Cylinder cylinder{kinematics.center_m, kinematics.axle, geometry.rim_radius_m,
                           geometry.width_m};
   grid_.press(cylinder, footprint_);
-  if (wrench.diagnostics.in_contact && geometry.bladed) {
+  CellBox landed;
+  if (excavated_m3 > 0.0) {
     const Vec3 normal = ground_normal(kinematics, wheel);
     const Vec3 rolling = cross(kinematics.axle, normal);
     const Vec3 forward = (1.0 / std::max(norm(rolling), 1e-12)) * rolling;
     const double direction = contacts_[wheel].direction();
-    const double slip_speed = direction * (geometry.shear_radius_m() * kinematics.spin_radps -
-                                           dot(kinematics.velocity_mps, forward));
-    const auto lanes = static_cast<std::size_t>(geometry.lanes);
-    const double touching =
-        find_lane_contacts(wheel, kinematics, normal, {lane_sinkage_.data(), lanes}, {});
-    const double volume = soil_.excavation_fraction * geometry.width_m * geometry.blade_height_m *
-                          std::max(slip_speed, 0.0) * dt_s * touching / geometry.lanes;
-    grid_.excavate(footprint_, cylinder, direction * forward,
-                   geometry.rim_radius_m + grid_.spec().cell_m, volume);
+    landed = grid_.excavate(footprint_, cylinder, direction * forward,
+                            geometry.rim_radius_m + grid_.spec().cell_m, excavated_m3);
   }
-  grid_.relax(footprint_, kRelaxMarginCells, kRelaxPasses);
+  // The repose over the patch and where its spoil landed: a short patch leaves the landing row
+  // outside its own margin, and spoil never spread would stand there as a wall.
+  grid_.relax(CellBox{footprint_.min_x, footprint_.min_y, footprint_.max_x, footprint_.max_y}
+                  .united(landed),
+              kRelaxMarginCells, kRelaxPasses);
 }
 
 }  // namespace marsokhod::sim::soil

@@ -335,14 +335,14 @@ void SoilGrid::collect_rim(const Footprint& footprint, int box_x, int box_y, int
   }
 }
 
-void SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, const Vec3& toward,
-                        double behind_m, double volume_m3) {
-  if (footprint.contact_cells.empty() || !(volume_m3 > 0.0)) return;
+CellBox SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, const Vec3& toward,
+                           double behind_m, double volume_m3) {
+  if (footprint.contact_cells.empty() || !(volume_m3 > 0.0)) return {};
   const double tx = toward[0], ty = toward[1];
   const double length = std::hypot(tx, ty);
   const double ax = wheel.axle[0], ay = wheel.axle[1];
   const double axle_length = std::hypot(ax, ay);
-  if (length < 1e-9 || axle_length < 1e-9) return;
+  if (length < 1e-9 || axle_length < 1e-9) return {};
   const int lanes = std::max(1, static_cast<int>(std::lround(wheel.width_m / spec_.cell_m)));
   std::vector<int> targets;
   for (int lane = 0; lane < lanes; ++lane) {
@@ -356,7 +356,7 @@ void SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, const
   }
   std::sort(targets.begin(), targets.end());
   targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
-  if (targets.empty()) return;  // it would land off the grid: keep the soil where it is
+  if (targets.empty()) return {};  // it would land off the grid: keep the soil where it is
   const double depth = volume_m3 / (static_cast<double>(footprint.contact_cells.size()) *
                                     spec_.cell_m * spec_.cell_m);
   for (int cell : footprint.contact_cells) surface_[static_cast<std::size_t>(cell)] -= depth;
@@ -364,6 +364,15 @@ void SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, const
   volumes_.cut_m3 += volume_m3;
   volumes_.excavated_m3 += volume_m3;
   spread(targets, volume_m3);
+  const auto columns = static_cast<std::size_t>(spec_.cells_x);
+  CellBox landed{spec_.cells_x, spec_.cells_y, -1, -1};
+  for (int cell : targets) {
+    const int ix = static_cast<int>(static_cast<std::size_t>(cell) % columns);
+    const int iy = static_cast<int>(static_cast<std::size_t>(cell) / columns);
+    landed = {std::min(landed.min_x, ix), std::min(landed.min_y, iy), std::max(landed.max_x, ix),
+              std::max(landed.max_y, iy)};
+  }
+  return landed;
 }
 
 void SoilGrid::move_downhill(std::size_t first, std::size_t second, double difference,
@@ -380,11 +389,16 @@ void SoilGrid::move_downhill(std::size_t first, std::size_t second, double diffe
 }
 
 void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {
-  if (footprint.max_x < footprint.min_x || footprint.max_y < footprint.min_y) return;
-  const int x0 = std::max(footprint.min_x - margin_cells, 0);
-  const int x1 = std::min(footprint.max_x + margin_cells, spec_.cells_x - 1);
-  const int y0 = std::max(footprint.min_y - margin_cells, 0);
-  const int y1 = std::min(footprint.max_y + margin_cells, spec_.cells_y - 1);
+  relax(CellBox{footprint.min_x, footprint.min_y, footprint.max_x, footprint.max_y}, margin_cells,
+        passes);
+}
+
+void SoilGrid::relax(const CellBox& box, int margin_cells, int passes) {
+  if (box.empty()) return;
+  const int x0 = std::max(box.min_x - margin_cells, 0);
+  const int x1 = std::min(box.max_x + margin_cells, spec_.cells_x - 1);
+  const int y0 = std::max(box.min_y - margin_cells, 0);
+  const int y1 = std::min(box.max_y + margin_cells, spec_.cells_y - 1);
   const double limit = repose_step_m_;
   const auto width = static_cast<std::size_t>(spec_.cells_x);
   for (int pass = 0; pass < passes; ++pass) {

@@ -70,6 +70,13 @@ struct Cylinder {
 struct CellBox {
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;
   bool empty() const { return max_x < min_x || max_y < min_y; }
+  // The smallest box holding both (either may be empty).
+  CellBox united(const CellBox& other) const {
+    if (other.empty()) return *this;
+    if (empty()) return other;
+    return {std::min(min_x, other.min_x), std::min(min_y, other.min_y),
+            std::max(max_x, other.max_x), std::max(max_y, other.max_y)};
+  }
 };
 
 // The cells a press touched, for excavation and relaxation to act on.
@@ -127,10 +134,13 @@ class SoilGrid {
   void press(const Cylinder& wheel, Footprint& footprint);
   // Takes volume_m3 evenly from the footprint's contact cells and drops it on the cells
   // behind_m behind the centre (along −toward, horizontal), across the wheel's width.
-  void excavate(const Footprint& footprint, const Cylinder& wheel, const Vec3& toward,
-                double behind_m, double volume_m3);
-  // Relaxes slopes steeper than the angle of repose in the footprint's box grown by margin cells.
+  // Returns the box of the cells the soil landed on (empty when none did).
+  CellBox excavate(const Footprint& footprint, const Cylinder& wheel, const Vec3& toward,
+                   double behind_m, double volume_m3);
+  // Relaxes slopes steeper than the angle of repose in the footprint's box (or a box) grown by
+  // margin cells.
   void relax(const Footprint& footprint, int margin_cells, int passes);
+  void relax(const CellBox& box, int margin_cells, int passes);
 
  private:
   std::size_t index(int ix, int iy) const {
