@@ -54,17 +54,25 @@ double terrain_ray_height_m(const mjModel& model, mjData& data, double x_m, doub
 }
 
 // The highest ground under the wheels' footprints, by casting rays down onto the terrain only.
+// The highest terrain under one wheel: rays at 3 × 3 points over its footprint.
+double ground_height_under_wheel_m(const mjModel& model, mjData& data, int body,
+                                   double radius_m) {
+  double highest_m = -kRayStartHeightM;
+  for (double dx : {-0.7 * radius_m, 0.0, 0.7 * radius_m}) {
+    for (double dy : {-kWheelWidthM / 2, 0.0, kWheelWidthM / 2}) {
+      const double height_m = terrain_ray_height_m(model, data, data.xpos[3 * body] + dx,
+                                                   data.xpos[3 * body + 1] + dy);
+      if (!std::isnan(height_m)) highest_m = std::max(highest_m, height_m);
+    }
+  }
+  return highest_m;
+}
+
 double ground_height_under_wheels_m(const mjModel& model, mjData& data, const RoverModelIds& ids,
                                     double radius_m) {
   double highest_m = -kRayStartHeightM;
   for (int body : ids.wheel_body) {
-    for (double dx : {-0.7 * radius_m, 0.0, 0.7 * radius_m}) {
-      for (double dy : {-kWheelWidthM / 2, 0.0, kWheelWidthM / 2}) {
-        const double height_m = terrain_ray_height_m(model, data, data.xpos[3 * body] + dx,
-                                                     data.xpos[3 * body + 1] + dy);
-        if (!std::isnan(height_m)) highest_m = std::max(highest_m, height_m);
-      }
-    }
+    highest_m = std::max(highest_m, ground_height_under_wheel_m(model, data, body, radius_m));
   }
   return highest_m;
 }
@@ -375,9 +383,15 @@ void RoverPhysics::place_on_ground() {
   for (int i = 4; i < 7; ++i) d.qpos[ids.free_qpos + i] = 0.0;
   for (int i = 0; i < 6; ++i) d.qvel[ids.free_dof + i] = 0.0;
   mj_kinematics(&m, &d);
-  d.qpos[ids.free_qpos + 2] =
-      ground_height_under_wheels_m(m, d, ids, impl_->params.geometry.wheel_radius_m) +
-      impl_->params.geometry.wheel_radius_m + kStartClearanceM;
+  // The joints set on the stand may hang the exterior axles below the centre one: the rover goes
+  // down until its first wheel is kStartClearanceM above the ground under it, none below.
+  const double radius_m = impl_->params.geometry.wheel_radius_m;
+  double height_m = -kRayStartHeightM;
+  for (int body : ids.wheel_body) {
+    height_m = std::max(height_m, ground_height_under_wheel_m(m, d, body, radius_m) + radius_m +
+                                      kStartClearanceM - d.xpos[3 * body + 2]);
+  }
+  d.qpos[ids.free_qpos + 2] = height_m;
   d.qpos[ids.free_qpos] = x;
   d.qpos[ids.free_qpos + 1] = y;
   impl_->apply_motor_lines();

@@ -98,7 +98,8 @@ class RoverPhysics {
   // The calibration stand: the center unit held 1 m above the ground, all wheels free, turned by
   // R = Ry(pitch)·Rx(roll) (roll about x1 first, then pitch; right-hand rule, like GroundTruth's
   // angles). The accelerometer then reads gravity in the turned frame: roll = +π/2 puts the
-  // left side (x2) up. place_on_ground() sets the rover level back on the ground beneath.
+  // left side (x2) up. place_on_ground() sets the rover level back on the ground beneath, its
+  // joints as they are: the lowest wheel 5 mm above the ground under it, none lower.
   void place_on_stand(double roll_rad, double pitch_rad);
   void place_on_ground();
   bool on_stand() const;

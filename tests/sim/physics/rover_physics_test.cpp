@@ -317,6 +317,40 @@ TEST(RoverPhysics, TwoRunsAreBitIdentical) {
   EXPECT_EQ(first_imu.accel_mps2, second_imu.accel_mps2);
 }
 
+// Set down from the stand with the joints bent (Procedure 5.1 sets them there), the exterior
+// axles hang below the centre one: every wheel comes down clear of the ground and the lowest
+// 5 mm above it, and the rover settles upright. (Placed by the centre axle's height, the exterior
+// wheels started 0.2 m into the ground; on soft sand the rover was thrown onto its back.)
+TEST(RoverPhysics, SetDownFromTheStandWithBentJointsEveryWheelClearsTheGround) {
+  for (const bool soft : {false, true}) {
+    SCOPED_TRACE(soft ? "soft sand" : "hard ground");
+    TerrainSpec terrain;
+    if (soft) terrain.ground = soft_sand();
+    RoverPhysics physics(Params{}, terrain);
+    physics.place_on_stand(0.0, 0.0);
+    MotorVector bend{};
+    bend[kFrontJoint] = -1.0;
+    bend[kRearJoint] = 1.0;
+    physics.set_drive(drive_at(bend));
+    run(physics, 600);
+    physics.set_drive(drive_at(MotorVector{}));
+    const double radius = Params{}.geometry.wheel_radius_m;
+    physics.place_on_ground();
+    const GroundTruth placed = physics.truth();
+    double lowest = 1.0, highest = 0.0;
+    for (const auto& wheel : placed.wheel_position_m) {
+      lowest = std::min(lowest, wheel[2] - radius);
+      highest = std::max(highest, wheel[2] - radius);
+    }
+    EXPECT_NEAR(lowest, 0.005, 1e-6);
+    EXPECT_GT(highest - lowest, 0.05);  // the joints are bent: the axles stand at other heights
+    run(physics, 2000);
+    expect_healthy(physics);
+    EXPECT_LT(std::abs(physics.truth().roll_pitch_yaw_rad[0]), 0.1);
+    EXPECT_LT(std::abs(physics.truth().roll_pitch_yaw_rad[1]), 0.1);
+  }
+}
+
 // Procedure 3.4's hand: at 1 rad/s and 1 ms steps the front axle is at exactly 0.2 rad after 200
 // steps, then held at 0.3; the rear, asked beyond its stop, rests on it at −0.524 rad.
 TEST(RoverPhysics, ProcedureThreeFoursHandTurnsAnAxleAndHoldsIt) {
