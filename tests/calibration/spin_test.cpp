@@ -180,8 +180,8 @@ TEST(SpinCalibration, OnSoftSandTheSpinDigsInAndStopsTurning) {
 // case; 1.34): what lets the exterior wheels run ahead is that a wheel spinning faster resists
 // being dragged sideways less (WheelSoil.SpinningFasterLowersTheLateralResistance), blades or
 // not. F̂ scatters with the rover's history: in the whole procedure, after two sweeps, this
-// sweep gives 2.28 and 2.61; over units 1–3 the procedure's F̂ lie within 1.0–6.4 with blades and
-// 1.2–4.0 without, too scattered about a line to be written (docs/calibration.md).
+// sweep gives 4.91 and 2.64; over units 1–3 the procedure's F̂ lie within 1.0–4.9 with blades and
+// 0.8–3.2 without, too scattered about a line to be written (docs/calibration.md).
 TEST(SpinCalibration, OnSoftSandTheExteriorWheelsRunAheadAtThePeakWithOrWithoutBlades) {
   for (const double inclination : {0.240, 0.0}) {
     SCOPED_TRACE(inclination);

@@ -78,8 +78,8 @@ TEST(ScenarioRunner, APhysicsStepOfItsOwnReachesTheSimulator) {
   EXPECT_EQ(run(kShortDrive, std::nullopt, 0.001).metrics, shipped.metrics);
 }
 
-// On soft soil the grid's metrics are reported, and they hang together: disturbed = cut + fill;
-// per metre over the distance; the trench depth is the exterior ruts' less the centre ones'.
+// On soft soil the grid's metrics are reported: finite, and after two seconds of driving every
+// wheel stands in a rut and soil was compacted.
 TEST(ScenarioRunner, OnSoftSoilReportsTheGridsMetrics) {
   std::string text = kShortDrive;
   text.replace(text.find("[sim]"), 5, "[terrain]\nkind = \"flat\"\nmaterial = \"soft-sand\"\n[sim]");
@@ -89,14 +89,12 @@ TEST(ScenarioRunner, OnSoftSoilReportsTheGridsMetrics) {
     EXPECT_TRUE(std::isfinite(r.metrics.at(name))) << name;
   }
   const auto& m = r.metrics;
-  EXPECT_DOUBLE_EQ(m.at("soil_disturbed_m3"), m.at("soil_cut_m3") + m.at("soil_fill_m3"));
   EXPECT_GT(m.at("soil_compacted_m3"), 0.0);
-  EXPECT_GT(m.at("final_center_rut_depth_m"), 0.0);  // every wheel stands in its rut
-  EXPECT_GT(m.at("final_exterior_rut_depth_m"), 0.0);
-  EXPECT_EQ(m.at("final_trench_depth_m"),
-            m.at("final_exterior_rut_depth_m") - m.at("final_center_rut_depth_m"));
-  EXPECT_DOUBLE_EQ(m.at("soil_disturbed_per_m_m3"),
-                   m.at("soil_disturbed_m3") / m.at("distance_m"));
+  EXPECT_GT(m.at("soil_disturbed_m3"), 0.0);
+  EXPECT_GT(m.at("final_center_rut_depth_m"), 0.005);  // Bekker's static sinkage is 1–3 cm
+  EXPECT_GT(m.at("final_exterior_rut_depth_m"), 0.005);
+  // Driving, no wheel digs a trench of its own: the exterior ruts within 1 cm of the centre ones.
+  EXPECT_LT(std::abs(m.at("final_trench_depth_m")), 0.01);
 }
 
 TEST(ScenarioRunner, ReportsTheRunsAndEachPhasesMetrics) {

@@ -53,8 +53,8 @@ double terrain_ray_height_m(const mjModel& model, mjData& data, double x_m, doub
   return distance >= 0.0 ? kRayStartHeightM - distance : std::numeric_limits<double>::quiet_NaN();
 }
 
-// The highest ground under the wheels' footprints, by casting rays down onto the terrain only.
-// The highest terrain under one wheel: rays at 3 × 3 points over its footprint.
+// The highest terrain under one wheel, by casting rays down onto the terrain only at 3 × 3 points
+// over its footprint.
 double ground_height_under_wheel_m(const mjModel& model, mjData& data, int body,
                                    double radius_m) {
   double highest_m = -kRayStartHeightM;
@@ -68,6 +68,7 @@ double ground_height_under_wheel_m(const mjModel& model, mjData& data, int body,
   return highest_m;
 }
 
+// The highest ground under all the wheels' footprints.
 double ground_height_under_wheels_m(const mjModel& model, mjData& data, const RoverModelIds& ids,
                                     double radius_m) {
   double highest_m = -kRayStartHeightM;
@@ -396,6 +397,8 @@ void RoverPhysics::place_on_ground() {
   d.qpos[ids.free_qpos + 1] = y;
   impl_->apply_motor_lines();
   mj_forward(&m, &d);
+  // On soft soil: whether the chassis meets the soil's field is decided anew where it now stands.
+  if (impl_->soft_soil) impl_->update_soil_field();
 }
 
 const soil::SoftSoil* RoverPhysics::soft_soil() const {

@@ -82,7 +82,6 @@ struct RoverPhysics::Impl {
   std::vector<double> soil_field_plane;  // the plane's height at each column's cells' centres
   std::array<double, 3> soil_field_normal{0.0, 0.0, 1.0};
   std::vector<int> soil_field_geoms;
-  int soil_field_steps = 0, soil_field_period_steps = 10;
   void copy_soil_to_field();
   bool chassis_near_soil() const;
   void update_soil_field();

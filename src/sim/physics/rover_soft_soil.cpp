@@ -7,8 +7,8 @@
 //
 // The grid (kSoftSoilGrid, terrain_mjcf.hpp): 2 cm cells from x = −3 m to 9 m and y = −3 m to 3 m
 // around the start, at the ground's initial level (flat, or x·tan(slope) on a slope). Beyond it
-// the edge cells' heights continue. Every 10 ms the cells that changed are copied into the MuJoCo
-// height field the chassis meets (terrain_mjcf.hpp).
+// the edge cells' heights continue. Each time the grid yields (every 10 ms, SoftSoil) the cells
+// that changed are copied into the MuJoCo height field the chassis meets (terrain_mjcf.hpp).
 // Blades: mirror-symmetric across the rover's middle — the left wheels right-handed, the right
 // wheels left-handed (docs/simulator.md), inclined at the geometry's blade_inclination_rad (i);
 // rim radius = wheel radius − 1 cm of blade.
@@ -28,10 +28,6 @@ using soil::operator+;
 using soil::operator-;
 
 constexpr double kBladeHeightM = 0.010;  // chapter 3.1: 0.125 m with blades, 0.115 on granules
-// The field follows the grid every 10 ms (whatever the physics' step): ruts grow by well under a
-// millimetre in that time, and copying the changed cells every step would cost a tenth of the
-// soil's own work.
-constexpr double kSoilFieldPeriodS = 0.010;
 // The field is met while the chassis comes this close to the soil (update_soil_field).
 constexpr double kSoilFieldReachM = 0.02;
 // A wheel whose contact is switched off (set_wheel_contact) is shown to the soil this high up.
@@ -62,8 +58,6 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   soil_field = require_id(*model, mjOBJ_HFIELD, kSoilFieldName);
   soil_field_geom = require_id(*model, mjOBJ_GEOM, kSoilFieldName);
   soil_field_cos = std::cos(slope_rad);
-  soil_field_period_steps =
-      std::max(1, static_cast<int>(std::lround(kSoilFieldPeriodS / model->opt.timestep)));
   for (int ix = 0; ix < kSoftSoilGrid.cells_x; ++ix) {
     soil_field_plane.push_back((kSoftSoilGrid.origin_x_m + (ix + 0.5) * kSoftSoilGrid.cell_m) *
                                slope);
@@ -160,8 +154,8 @@ bool RoverPhysics::Impl::chassis_near_soil() const {
   return false;
 }
 
-// Every period (10 ms): the grid's changes into the field, and whether the chassis can reach the
-// soil before the next time. The field's collision with a geom costs MuJoCo a pass over every
+// Each time the grid yields (10 ms), and when the rover is set down or the soil raked: the grid's
+// changes into the field, and whether the chassis can reach the soil before the next time. The field's collision with a geom costs MuJoCo a pass over every
 // cell under the geom's box (the axles span 27 cells by 4) even when nothing touches, as much as
 // the soil model's own step; so the field is met only while some geom comes within
 // kSoilFieldReachM (2 cm) of the soil under it. A heap that rises or a chassis that sinks faster
@@ -189,10 +183,7 @@ void RoverPhysics::Impl::apply_soft_soil() {
     if (m.geom_contype[ids.wheel_geom[wheel]] == 0) kinematics.center_m[2] += kLiftedM;
   }
   const std::vector<soil::WheelWrench> wrenches = soft_soil->step(wheels, m.opt.timestep);
-  if (++soil_field_steps >= soil_field_period_steps) {
-    soil_field_steps = 0;
-    update_soil_field();
-  }
+  if (soft_soil->yielded()) update_soil_field();  // the grid changes only when it yields
   for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
     const int body = ids.wheel_body[wheel];
     const soil::WheelWrench& wrench = wrenches[wheel];

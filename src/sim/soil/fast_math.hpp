@@ -1,22 +1,22 @@
 // Inline exponentials, sines and cosines for the soil's hot loops, where glibc's calls (errno
 // wrapper and dispatch included) took a quarter of the soft-sand step.
 //
-// exp_nonpositive: e^x for x ≤ 0, per arc sample the blades' two mobilised
-// shares 1 − e^(−|j|/K) and Bekker's power as e^(n ln x) — 1300 exponentials a step for six wheels,
-// a fifth of the soft-sand step's time through glibc's exp (its call and errno wrapper included).
-//
+// exp_nonpositive: e^x for x ≤ 0 — per arc sample the blades' two mobilised shares
+// 1 − e^(−|j|/K) and Bekker's power as e^(n ln x), 1300 exponentials a step for six wheels.
 // x = (32·m + i)·ln2/32 + r, |r| ≤ ln2/64 (Cody–Waite: ln2/32 split in two, the high part with
 // 32 significant bits so that k·high is exact for |k| < 2^21); e^x = 2^m · 2^(i/32) · e^r, the 32
 // values 2^(i/32) correctly rounded (written out below), e^r by its Taylor polynomial of degree 6
-// (truncation ≤ 3.5e-18 relative). Within 4.5e-16 of std::exp (2 units in the last place) over
-// [−708, 0]; e^0 = 1 exactly; below −708 the result is e^−708 (≈ 3e-308: 1 − e^x is 1 there, as
-// it is from about −38 on). Plain arithmetic in a fixed order: as repeatable as std::exp. A pair
-// of exponentials costs about what one does: the blades' two shares of a sample go together.
+// (truncation ≤ 3.5e-18 relative). Within 3 units in the last place of std::exp over [−708, 0]
+// (tested); e^0 = 1 exactly; below −708 the result is e^−708 (≈ 3e-308: 1 − e^x is 1 there, as it
+// is from about −38 on); a NaN gives NaN; x > 0 is outside its domain (wrong results, no undefined
+// behaviour). Plain arithmetic in a fixed order: as repeatable as std::exp. A pair of
+// exponentials, one template body for both, costs about what one does: the blades' two shares of
+// a sample go together.
 //
 // sin_cos: sin x and cos x together for |x| ≤ π/2 (every angle of a contact arc, and its steps),
-// by their Taylor polynomials in x² to x²¹ and x²² (truncation under 2e-18 at π/2), evaluated as
-// one pair; within 4.4e-16 (2 units in the last place of 1) of std::sin and std::cos there.
-// Beyond 1.6 it calls them.
+// by their Taylor polynomials, x·(1 − x²/3! + … ) to x²³ and 1 − x²/2! + … to x²² (truncation
+// under 2e-18 at π/2), evaluated as one pair; within 4.4e-16 (2 units in the last place of 1) of
+// std::sin and std::cos there. Beyond 1.6 it calls them.
 #pragma once
 
 #include <array>
@@ -91,31 +91,44 @@ inline Value exp_reduced_polynomial(Value r) {
          r2 * ((0.5 + r * (1.0 / 6.0)) + r2 * ((1.0 / 24.0 + r * (1.0 / 120.0)) + r2 * (1.0 / 720.0)));
 }
 
+// What differs between one value and a pair: the integer type of the same width, a constant of
+// the value's type, and the table's lookup (one index, or one per lane).
+template <class Value>
+struct ExpLanes;
+template <>
+struct ExpLanes<double> {
+  using Bits = std::uint64_t;
+  static double splat(double value) { return value; }
+  static double fractions(Bits index) { return kExp2Fractions[index & 31]; }
+};
+template <>
+struct ExpLanes<DoublePair> {
+  using Bits = BitsPair;
+  static DoublePair splat(double value) { return DoublePair{value, value}; }
+  static DoublePair fractions(Bits index) {
+    return DoublePair{kExp2Fractions[index[0] & 31], kExp2Fractions[index[1] & 31]};
+  }
+};
+
+// The one body of both: the same operations in the same order, lane by lane.
+template <class Value>
+inline Value exp_nonpositive_lanes(Value x) {
+  using Lanes = ExpLanes<Value>;
+  using Bits = typename Lanes::Bits;
+  const Value floor = Lanes::splat(kExpNonPositiveFloor);
+  x = x < floor ? floor : x;  // a NaN stays NaN (its bits index the table harmlessly)
+  const Value shifted = x * kStepsPerUnit + kRoundBiased;
+  const Value k = shifted - kRoundBiased;
+  const Value r = (x - k * kStepHigh) - k * kStepLow;
+  const Bits biased = std::bit_cast<Bits>(shifted) - kRoundBits;
+  const Value power = std::bit_cast<Value>(Bits((biased >> 5) << 52));  // 2^m, m = ⌊k/32⌋
+  return exp_reduced_polynomial(r) * (Lanes::fractions(biased) * power);
+}
+
 }  // namespace detail
 
-inline double exp_nonpositive(double x) {
-  using namespace detail;
-  x = x > kExpNonPositiveFloor ? x : kExpNonPositiveFloor;  // NaN too: no undefined conversion
-  const double shifted = x * kStepsPerUnit + kRoundBiased;
-  const double k = shifted - kRoundBiased;
-  const double r = (x - k * kStepHigh) - k * kStepLow;
-  const std::uint64_t biased = std::bit_cast<std::uint64_t>(shifted) - kRoundBits;
-  const double power = std::bit_cast<double>((biased >> 5) << 52);  // 2^m, m = ⌊k/32⌋
-  return exp_reduced_polynomial(r) * (kExp2Fractions[biased & 31] * power);
-}
-
-inline DoublePair exp_nonpositive(DoublePair x) {
-  using namespace detail;
-  const DoublePair floor = {kExpNonPositiveFloor, kExpNonPositiveFloor};
-  x = x > floor ? x : floor;
-  const DoublePair shifted = x * kStepsPerUnit + kRoundBiased;
-  const DoublePair k = shifted - kRoundBiased;
-  const DoublePair r = (x - k * kStepHigh) - k * kStepLow;
-  const BitsPair biased = std::bit_cast<BitsPair>(shifted) - kRoundBits;
-  const BitsPair bits = (biased >> 5) << 52;
-  const DoublePair fractions = {kExp2Fractions[biased[0] & 31], kExp2Fractions[biased[1] & 31]};
-  return exp_reduced_polynomial(r) * (fractions * std::bit_cast<DoublePair>(bits));
-}
+inline double exp_nonpositive(double x) { return detail::exp_nonpositive_lanes(x); }
+inline DoublePair exp_nonpositive(DoublePair x) { return detail::exp_nonpositive_lanes(x); }
 
 namespace detail {
 

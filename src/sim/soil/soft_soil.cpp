@@ -17,6 +17,13 @@ constexpr int kRelaxPasses = 4;
 constexpr int kExitSteps = 16;
 constexpr double kTouchM = 1e-4;
 
+// The wheel's rolling direction along the ground (axle × normal, unit; +x of its motion frame
+// before the direction it rolls in is applied).
+Vec3 rolling_forward(const WheelKinematics& kinematics, const Vec3& normal) {
+  const Vec3 rolling = cross(kinematics.axle, normal);
+  return (1.0 / std::max(norm(rolling), 1e-12)) * rolling;
+}
+
 }  // namespace
 
 SoftSoil::SoftSoil(SoilParams soil, GridSpec grid,
@@ -43,6 +50,7 @@ SoftSoil::SoftSoil(SoilParams soil, GridSpec grid,
 void SoftSoil::level() {
   grid_.level();
   since_yield_s_ = 0.0;
+  yielded_ = false;
   std::fill(excavation_m3_.begin(), excavation_m3_.end(), 0.0);
   for (WheelSoilContact& contact : contacts_) contact = WheelSoilContact(soil_, contact.wheel());
 }
@@ -144,7 +152,8 @@ std::vector<WheelWrench> SoftSoil::step(std::span<const WheelKinematics> wheels,
     }
   }
   since_yield_s_ += dt_s;
-  if (since_yield_s_ + 0.5 * dt_s >= yield_period_s_) {
+  yielded_ = since_yield_s_ + 0.5 * dt_s >= yield_period_s_;
+  if (yielded_) {
     for (std::size_t i = 0; i < wheels.size(); ++i) {
       deform(i, wheels[i], excavation_m3_[i]);
       excavation_m3_[i] = 0.0;
@@ -160,8 +169,7 @@ double SoftSoil::excavation_rate_m3ps(std::size_t wheel, const WheelKinematics& 
                                       const Vec3& normal, int touching_lanes) const {
   const WheelGeometry& geometry = contacts_[wheel].wheel();
   if (!geometry.bladed || touching_lanes == 0) return 0.0;
-  const Vec3 rolling = cross(kinematics.axle, normal);
-  const Vec3 forward = (1.0 / std::max(norm(rolling), 1e-12)) * rolling;
+  const Vec3 forward = rolling_forward(kinematics, normal);
   const double direction = contacts_[wheel].direction();
   const double slip_speed = direction * (geometry.shear_radius_m() * kinematics.spin_radps -
                                          dot(kinematics.velocity_mps, forward));
@@ -178,18 +186,14 @@ void SoftSoil::deform(std::size_t wheel, const WheelKinematics& kinematics, doub
   grid_.press(cylinder, footprint_);
   CellBox landed;
   if (excavated_m3 > 0.0) {
-    const Vec3 normal = ground_normal(kinematics, wheel);
-    const Vec3 rolling = cross(kinematics.axle, normal);
-    const Vec3 forward = (1.0 / std::max(norm(rolling), 1e-12)) * rolling;
+    const Vec3 forward = rolling_forward(kinematics, ground_normal(kinematics, wheel));
     const double direction = contacts_[wheel].direction();
     landed = grid_.excavate(footprint_, cylinder, direction * forward,
                             geometry.rim_radius_m + grid_.spec().cell_m, excavated_m3);
   }
   // The repose over the patch and where its spoil landed: a short patch leaves the landing row
   // outside its own margin, and spoil never spread would stand there as a wall.
-  grid_.relax(CellBox{footprint_.min_x, footprint_.min_y, footprint_.max_x, footprint_.max_y}
-                  .united(landed),
-              kRelaxMarginCells, kRelaxPasses);
+  grid_.relax(footprint_.box().united(landed), kRelaxMarginCells, kRelaxPasses);
 }
 
 }  // namespace marsokhod::sim::soil

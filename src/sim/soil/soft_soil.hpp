@@ -9,13 +9,16 @@
 // exit angle θ2 is the furthest angle behind the bottom (down to −θ1, searched in steps of θ1/16
 // and interpolated) at which the rim is no higher above the soil than at its bottom (+0.1 mm):
 // about 0 behind a rolling wheel, −θ1 under one that sank in place. The contact gives the
-// wrench. Then, again in wheel order, the grid yields: press (plastic sinkage, soil to the
-// patch's rim), excavation, relaxation to the angle of repose around the wheel.
+// wrench. When the grid yields (below), again in wheel order: press (plastic sinkage, soil to the
+// patch's rim), excavation, relaxation to the angle of repose over the patch and where the spoil
+// landed, 3 cells around their box.
 //
 // Excavation: a blade groove of height h across the width b carries the soil it fills; rolling
 // without slip it lays it down where it took it, so only the slip's share leaves the rut:
 //   V = f_e · b · h · max(0, r_s ω − v) · dt · (lanes in contact / lanes),
-// summed step by step, dropped one cell behind the rim, against the direction of motion.
+// summed step by step, dropped one cell behind the rim, against the direction of motion, at the
+// yield. (A wheel that has left the soil by then, its press touching no cell, takes nothing: the
+// sum is dropped with the soil left in place, the books balanced.)
 //
 // The wheels' forces are worked out every step; the grid yields (press, excavation, repose) once
 // per yield period of simulated time (10 ms unless told otherwise; 0: every step), at the wheels'
@@ -47,6 +50,8 @@ class SoftSoil {
   // the step on which the time since its last yield reaches the period (within half a step).
   std::vector<WheelWrench> step(std::span<const WheelKinematics> wheels, double dt_s);
   double yield_period_s() const { return yield_period_s_; }
+  // Whether the grid yielded at the end of the last step (the only steps it changes on).
+  bool yielded() const { return yielded_; }
 
   // The lane sinkages and exit angles step() would use for one wheel, and the normal it uses.
   struct LaneContacts {
@@ -78,6 +83,7 @@ class SoftSoil {
   std::vector<double> lane_sinkage_, lane_exit_;
   double yield_period_s_;
   double since_yield_s_ = 0.0;
+  bool yielded_ = false;
   std::vector<double> excavation_m3_;  // per wheel, summed since the last yield
   Footprint footprint_;  // reused: its cell list keeps its capacity
 };

@@ -389,8 +389,7 @@ void SoilGrid::move_downhill(std::size_t first, std::size_t second, double diffe
 }
 
 void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {
-  relax(CellBox{footprint.min_x, footprint.min_y, footprint.max_x, footprint.max_y}, margin_cells,
-        passes);
+  relax(footprint.box(), margin_cells, passes);
 }
 
 void SoilGrid::relax(const CellBox& box, int margin_cells, int passes) {

@@ -83,6 +83,7 @@ struct CellBox {
 struct Footprint {
   std::vector<int> contact_cells;                    // cell indices, ascending
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // their box (empty: max < min)
+  CellBox box() const { return {min_x, min_y, max_x, max_y}; }
 };
 
 class SoilGrid {

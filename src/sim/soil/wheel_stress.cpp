@@ -156,14 +156,23 @@ double sidewall_resistance_n(const SoilParams& soil, double rim_radius_m, double
 //   A = r² acos(h/r) − h √(r² − h²)
 // and the integral of the depth over it, ∫_h^r (y − h)·2√(r² − y²) dy = ⅔ (r² − h²)^(3/2) − h A, so
 //   F = 2c√N_φ · A + ρ g N_φ · (⅔ (r² − h²)^(3/2) − h A).
+// Both differences cancel as z → 0; below z = 1e-3·r their leading terms, A ≈ (4/3)√(2r) z^(3/2)
+// and (8/15)√(2r) z^(5/2) (the segment's parabola; relative error ≈ z/r), are used instead.
 double sidewall_resistance_n(const SoilParams& soil, double passive, double rim_radius_m,
                              double sinkage_m) {
   const double z = std::clamp(sinkage_m, 0.0, rim_radius_m);
   if (z <= 0.0) return 0.0;
   const double r = rim_radius_m, h = r - z;
-  const double half_chord = std::sqrt(std::max(r * r - h * h, 0.0));
-  const double area = r * r * std::acos(h / r) - h * half_chord;
-  const double depth_moment = 2.0 / 3.0 * half_chord * half_chord * half_chord - h * area;
+  double area = 0.0, depth_moment = 0.0;
+  if (z < 1e-3 * r) {
+    const double root = std::sqrt(2.0 * r * z);  // √(2r)·z^(1/2)
+    area = 4.0 / 3.0 * root * z;
+    depth_moment = 8.0 / 15.0 * root * z * z;
+  } else {
+    const double half_chord = std::sqrt(z * (2.0 * r - z));  // √(r² − h²) without cancelling
+    area = r * r * std::acos(h / r) - h * half_chord;
+    depth_moment = 2.0 / 3.0 * half_chord * half_chord * half_chord - h * area;
+  }
   return 2.0 * soil.cohesion_pa * std::sqrt(passive) * area +
          soil.bulk_density_kgpm3 * soil.gravity_mps2 * passive * depth_moment;
 }

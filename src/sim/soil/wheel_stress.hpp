@@ -170,9 +170,18 @@ inline DoublePair mobilised(DoublePair displacement_m, double inverse_shear_modu
 
 }  // namespace detail
 
+namespace detail {
+
+// The depth r·(cos θ* − cos θ1) Bekker's pressure is taken at, 0 outside the arc.
+inline double bekker_depth_m(const ContactArc& arc, double rim_radius_m, double cos_equivalent) {
+  return rim_radius_m * std::max(cos_equivalent - arc.cos_entry, 0.0);
+}
+
+}  // namespace detail
+
 inline double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc,
                                         double rim_radius_m, double cos_equivalent) {
-  const double depth = rim_radius_m * std::max(cos_equivalent - arc.cos_entry, 0.0);
+  const double depth = detail::bekker_depth_m(arc, rim_radius_m, cos_equivalent);
   if (depth <= 0.0) return 0.0;
   const double n = arc.sinkage_exponent;
   if (n == 1.0) return modulus_pa * depth;
@@ -185,8 +194,8 @@ inline void normal_stresses_from_cos_pa(double modulus_pa, const ContactArc& arc
   const double n = arc.sinkage_exponent;
   int k = 0;
   for (; k + 1 < count && n != 1.0; k += 2) {
-    const double first = rim_radius_m * std::max(values[k] - arc.cos_entry, 0.0);
-    const double second = rim_radius_m * std::max(values[k + 1] - arc.cos_entry, 0.0);
+    const double first = detail::bekker_depth_m(arc, rim_radius_m, values[k]);
+    const double second = detail::bekker_depth_m(arc, rim_radius_m, values[k + 1]);
     if (!(first > 0.0 && second > 0.0)) break;  // the rest one by one
     const DoublePair exponent = {n * std::log(first), n * std::log(second)};
     if (!(exponent[0] <= 0.0 && exponent[1] <= 0.0)) break;

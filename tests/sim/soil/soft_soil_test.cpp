@@ -95,28 +95,50 @@ TEST(SoftSoil, SpinningInPlaceDigsAHole) {
   EXPECT_EQ(still.grid().volumes().excavated_m3, 0.0);
 }
 
-// The grid yields once per period, with the blades' soil of every step since the last.
+// The grid yields once per period, with the blades' soil of every step since the last; raking
+// it level starts the period again; a period of 0 yields every step.
 TEST(SoftSoil, TheGridYieldsOncePerPeriod) {
   SoftSoil soil = one_wheel_on_flat_sand();
   const WheelKinematics wheel{{0.0, 0.0, 0.10}, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.0}, 2.0};  // 1.5 cm in
-  for (int i = 0; i < 9; ++i) soil.step({&wheel, 1}, kDt);
-  EXPECT_EQ(soil.grid().volumes().cut_m3, 0.0);
-  soil.step({&wheel, 1}, kDt);
-  const SoilVolumes& v = soil.grid().volumes();
-  EXPECT_GT(v.compacted_m3, 0.0);
-  // Spinning in place at 2 rad/s, all three lanes in: f_e·b·h·r_s·ω over the 10 ms.
+  // Spinning in place at 2 rad/s, all three lanes in: f_e·b·h·r_s·ω over each 10 ms.
   const WheelGeometry geometry;
-  EXPECT_NEAR(v.excavated_m3,
-              dry_sand().excavation_fraction * geometry.width_m * geometry.blade_height_m *
-                  geometry.shear_radius_m() * 2.0 * 10 * kDt,
-              1e-15);
+  const double per_period = dry_sand().excavation_fraction * geometry.width_m *
+                            geometry.blade_height_m * geometry.shear_radius_m() * 2.0 * 10 * kDt;
+  const auto steps_until_yield = [&] {
+    for (int i = 1; i <= 20; ++i) {
+      soil.step({&wheel, 1}, kDt);
+      if (soil.yielded()) return i;
+    }
+    return 0;
+  };
+  EXPECT_EQ(steps_until_yield(), 10);
+  EXPECT_GT(soil.grid().volumes().compacted_m3, 0.0);
+  EXPECT_NEAR(soil.grid().volumes().excavated_m3, per_period, 1e-15);
+  EXPECT_EQ(steps_until_yield(), 10);  // the second period
+  EXPECT_NEAR(soil.grid().volumes().excavated_m3, 2 * per_period, 1e-15);
+  for (int i = 0; i < 4; ++i) soil.step({&wheel, 1}, kDt);
+  soil.level();  // raked: the 4 ms of spin since are forgotten, and the period starts again
+  EXPECT_EQ(soil.grid().volumes().cut_m3, 0.0);
+  EXPECT_EQ(steps_until_yield(), 10);
+  EXPECT_NEAR(soil.grid().volumes().excavated_m3, per_period, 1e-15);
+  // Steps of 3 ms: it yields at the end of the step that ends within half a step of 10 ms, 9 ms.
+  SoftSoil coarse = one_wheel_on_flat_sand();
+  coarse.step({&wheel, 1}, 0.003);
+  coarse.step({&wheel, 1}, 0.003);
+  EXPECT_FALSE(coarse.yielded());
+  coarse.step({&wheel, 1}, 0.003);
+  EXPECT_TRUE(coarse.yielded());
+  SoftSoil every_step = one_wheel_on_flat_sand(0.0);
+  every_step.step({&wheel, 1}, kDt);
+  EXPECT_TRUE(every_step.yielded());
+  EXPECT_GT(every_step.grid().volumes().compacted_m3, 0.0);
 }
 
 // Yielding every 10 ms rather than every step: driving with slip, the wheel sinks as deep and the
 // grid's books agree; spinning in place, the hole deepens at 0.90 of the rate (measured: 6.74
 // against 7.48 cm in 3 s at 2 rad/s; 0.95 yielding every 5 ms, 1.00 every 2 ms), the
 // excavation's soil leaving the hole in batches of 10 ms.
-TEST(SoftSoil, YieldingEvery10msLeavesTheRutsOfYieldingEveryStep) {
+TEST(SoftSoil, YieldingEvery10msAgainstYieldingEveryStep) {
   {
     SoftSoil every_step = one_wheel_on_flat_sand(0.0);
     SoftSoil every_period = one_wheel_on_flat_sand();

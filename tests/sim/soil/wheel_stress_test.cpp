@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 #include <numbers>
 
 #include "../../support/invalid_argument.hpp"
@@ -159,6 +160,29 @@ TEST(WheelStress, ContactArcAndStressLaws) {
   EXPECT_DOUBLE_EQ(regularised_slip(0.8, 1.0), -0.2);
 }
 
+// The arc's normal stresses in one pass, two exponentials at a time, are those of one sample at a
+// time, bit for bit: over an odd count, at n = 1, and past the arc where σ = 0.
+TEST(WheelStress, NormalStressesInPairsAreTheSingleOnes) {
+  const SoilParams soil = dry_sand();
+  for (const double slip : {0.0, 0.4}) {
+    const ContactArc arc = contact_arc(soil, 0.115, 0.03, slip);
+    for (const double n : {arc.sinkage_exponent, 1.0}) {
+      ContactArc with_n = arc;
+      with_n.sinkage_exponent = n;
+      std::vector<double> cosines;
+      for (int k = 0; k < 25; ++k) cosines.push_back(std::cos(arc.entry_rad * (1.1 - 0.09 * k)));
+      std::vector<double> stresses = cosines;
+      normal_stresses_from_cos_pa(5e5, with_n, 0.115, stresses.data(),
+                                  static_cast<int>(stresses.size()));
+      for (std::size_t k = 0; k < cosines.size(); ++k) {
+        EXPECT_EQ(stresses[k], normal_stress_from_cos_pa(5e5, with_n, 0.115, cosines[k])) << k;
+      }
+      EXPECT_EQ(stresses[0], 0.0);  // θ = 1.1 θ1, ahead of the arc
+      EXPECT_GT(stresses[5], 0.0);
+    }
+  }
+}
+
 TEST(WheelStress, SidewallIsRankinesPassivePressureOnTheSegment) {
   SoilParams soil = dry_sand();
   EXPECT_DOUBLE_EQ(sidewall_resistance_n(soil, 0.115, 0.0), 0.0);
@@ -179,7 +203,7 @@ TEST(WheelStress, SidewallsWeightTermIsTheDepthIntegratedOverTheSegment) {
   SoilParams soil = dry_sand();
   soil.cohesion_pa = 0.0;
   const double passive = passive_earth_coefficient(soil);
-  for (const double z : {0.005, 0.03, 0.115}) {
+  for (const double z : {1e-5, 1.1e-4, 1.2e-4, 0.005, 0.03, 0.115}) {  // both sides of 1e-3·r
     const double r = 0.115;
     constexpr int kSamples = 200000;
     double integral = 0.0;
@@ -189,7 +213,13 @@ TEST(WheelStress, SidewallsWeightTermIsTheDepthIntegratedOverTheSegment) {
       integral += depth * 2.0 * std::sqrt(r * r - from_center * from_center) * z / kSamples;
     }
     const double expected = soil.bulk_density_kgpm3 * soil.gravity_mps2 * passive * integral;
-    EXPECT_NEAR(sidewall_resistance_n(soil, r, z), expected, 1e-6 * expected) << z;
+    const double tolerance = z < 1e-3 * r ? z / r : 1e-6;  // the series' relative error: z/r
+    EXPECT_NEAR(sidewall_resistance_n(soil, r, z), expected, tolerance * expected) << z;
+  }
+  // Never negative, however little the wheel sinks (the closed form's differences cancel there).
+  for (double z = 1e-12; z < 0.01; z *= 1.7) {
+    EXPECT_GE(sidewall_resistance_n(soil, 0.115, z), 0.0) << z;
+    EXPECT_GE(sidewall_resistance_n(dry_sand(), 0.115, z), 0.0) << z;
   }
 }
 
