@@ -80,6 +80,13 @@ SpinPoint spin_point(const SpinSweep& sweep, const SpinLimits& limits,
   SpinPoint point;
   point.clearance_m = sweep.clearance_m;
   const std::string at = "c = " + fixed(sweep.clearance_m) + " m: ";
+  if (sweep.null_spread_radps > limits.max_null_spread_radps) {
+    problems.push_back(at + "the gyro read the rover turning (σ = " +
+                       fixed(sweep.null_spread_radps) + " rad/s, at most " +
+                       fixed(limits.max_null_spread_radps) +
+                       ") in the rest before the sweep, where its null rate is taken: let the rover "
+                       "settle where it was set down");
+  }
   if (sweep.samples.size() < limits.min_samples) {
     problems.push_back(at + "only " + std::to_string(sweep.samples.size()) +
                        " cycles in the sweep (at least " + std::to_string(limits.min_samples) +
@@ -228,6 +235,7 @@ SpinSweep run_spin_sweep(Bench& bench, double clearance_m, double ramp_s,
   const double null_counts = yaw.empty() ? bench.params().sensors.gyro_null_typ_counts : mean(yaw);
   SpinSweep sweep;
   sweep.clearance_m = clearance_m;
+  if (!yaw.empty()) sweep.null_spread_radps = per_count * standard_deviation(yaw);
   const auto cycles = static_cast<long>(std::ceil(ramp_s / bench.period_s()));
   const double start_s = bench.time_s();
   for (long k = 0; k <= cycles; ++k) {

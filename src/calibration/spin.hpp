@@ -39,6 +39,9 @@ struct SpinSample {
 struct SpinSweep {
   double clearance_m = 0.0;  // c from the joints' positions reached, (c_f + c_r)/2
   std::vector<SpinSample> samples;
+  // The gyro's standard deviation over the rest in which its null rate was taken, as a rate: a
+  // rover still moving then (settling after it was set down) offsets the whole sweep's ω3.
+  double null_spread_radps = 0.0;
 };
 
 // What one sweep gives.
@@ -56,6 +59,7 @@ struct SpinLimits {
   double averaging_s = 0.5;            // centered moving average of ω3 and w̄ before the peak
   double edge_tau = 0.05;              // a peak this close to τ = 0 or 1 was not bracketed
   double min_turn_rate_radps = 0.05;   // the rover must turn
+  double max_null_spread_radps = 0.05; // and stand still while the gyro's null is taken
   double max_rms_residual = 0.15;      // of F̂ about the line
 };
 
@@ -63,8 +67,8 @@ struct SpinLimits {
 SpinPoint spin_point(const SpinSweep& sweep, const SpinLimits& limits,
                      std::vector<std::string>& problems);
 
-// F(c) from the sweeps; refuses too few clearances, unbracketed peaks, F̂ ≤ 1, a line falling
-// with c, or a poor line.
+// F(c) from the sweeps; refuses too few clearances, a sweep whose rest was not still, unbracketed
+// peaks, F̂ ≤ 1, a line falling with c, or a poor line.
 ProcedureResult fit_spin(const std::vector<SpinSweep>& sweeps, const SpinLimits& limits = {});
 
 // One sweep on the ground as it stands: rests 1 s for the gyro's null rate, then ramps τ over

@@ -210,6 +210,29 @@ TEST(SpinCalibration, OnSoftSandTheExteriorWheelsRunAheadAtThePeakWithOrWithoutB
   }
 }
 
+// The gyro's null rate is taken in a 1 s rest before each sweep; a rover still moving then
+// (settling where it was set down) would offset the whole sweep's ω3, so a spread above 0.05 rad/s
+// (the slowest spin accepted) refuses the sweep. At rest on hard ground the spread is the gyro's
+// own: µ8's noise σ 0.4 counts and the 10-bit quantisation's 1/√12 count, √(0.16 + 0.083) = 0.49
+// counts of 0.017 rad/s, 0.0084 rad/s.
+TEST(SpinCalibration, RefusesASweepWhoseRestWasNotStill) {
+  const Params params = config();
+  SimBench bench(params, battery(6));
+  bench.start(params.cycle.icr, params.cycle.con);
+  bench.arrange(BenchSetup{});
+  const SpinSweep still = run_spin_sweep(bench, 0.3867, 2.0);
+  EXPECT_NEAR(still.null_spread_radps, 0.0084, 0.003);
+  std::vector<std::string> problems;
+  spin_point(still, SpinLimits{}, problems);
+  EXPECT_FALSE(mentions(problems, "rest before the sweep")) << first(problems);
+  SpinSweep settling = synthetic_sweep(0.4, 2.2, 0.5);
+  settling.null_spread_radps = 0.2;
+  problems.clear();
+  spin_point(settling, SpinLimits{}, problems);
+  EXPECT_TRUE(mentions(problems, "in the rest before the sweep, where its null rate is taken"))
+      << first(problems);
+}
+
 TEST(SpinCalibration, TheFitOfSyntheticSweepsIsTheirLine) {
   std::vector<SpinSweep> sweeps;
   for (double c : {0.4, 0.45, 0.5}) sweeps.push_back(synthetic_sweep(c, 5.3 * c + 0.04, 0.5));
