@@ -84,8 +84,8 @@ SpinPoint spin_point(const SpinSweep& sweep, const SpinLimits& limits,
     problems.push_back(at + "the gyro read the rover turning (σ = " +
                        fixed(sweep.null_spread_radps) + " rad/s, at most " +
                        fixed(limits.max_null_spread_radps) +
-                       ") in the rest before the sweep, where its null rate is taken: let the rover "
-                       "settle where it was set down");
+                       ") in the rest before the sweep, where its null rate is taken: let the "
+                       "rover settle where it was set down");
   }
   if (sweep.samples.size() < limits.min_samples) {
     problems.push_back(at + "only " + std::to_string(sweep.samples.size()) +

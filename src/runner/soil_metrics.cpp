@@ -46,9 +46,9 @@ void add_soil_metrics(const Session& session, double distance_m,
   m["soil_disturbed_m3"] = disturbed;
   m["soil_compacted_m3"] = v.compacted_m3;
   m["soil_mean_compaction_m"] = area > 0.0 ? v.compacted_m3 / area : 0.0;
-  m["soil_max_depth_m"] =
-      grid.max_depth_m(spec.origin_x_m, spec.origin_y_m, spec.origin_x_m + spec.cells_x * spec.cell_m,
-                       spec.origin_y_m + spec.cells_y * spec.cell_m);
+  m["soil_max_depth_m"] = grid.max_depth_m(spec.origin_x_m, spec.origin_y_m,
+                                           spec.origin_x_m + spec.cells_x * spec.cell_m,
+                                           spec.origin_y_m + spec.cells_y * spec.cell_m);
   const sim::GroundTruth truth = session.rover().truth();
   m["final_exterior_rut_depth_m"] = mean_rut_depth_m(
       grid, truth, std::array{kFrontLeft, kFrontRight, kBackLeft, kBackRight});

@@ -136,8 +136,8 @@ TEST(ShippedScenarios, TheAxlePlacementWalksPastTheStallAtABlock) {
 // low duty cycles (d ≈ 0.2) let the wheels slip and the redistribution has slip to even out, the
 // effect is large (seed 1: off 0.12 m, s 0.37 m, v 0.39 m; seeds 2 and 3 alike). Without the
 // redistribution the rover stalls there, and the stuck failsafe would stop it 3 s later and its
-// wheels' slip with it; the comparison is of the traction the redistribution gives a rover that keeps trying, so
-// all three run with the failsafe off (stuck_time_s = 0).
+// wheels' slip with it; the comparison is of the traction the redistribution gives a rover that
+// keeps trying, so all three run with the failsafe off (stuck_time_s = 0).
 Params keeps_trying() {
   Params params = shipped_params();
   params.safety.stuck_time_s = 0.0;

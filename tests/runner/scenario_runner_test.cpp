@@ -82,7 +82,8 @@ TEST(ScenarioRunner, APhysicsStepOfItsOwnReachesTheSimulator) {
 // wheel stands in a rut and soil was compacted.
 TEST(ScenarioRunner, OnSoftSoilReportsTheGridsMetrics) {
   std::string text = kShortDrive;
-  text.replace(text.find("[sim]"), 5, "[terrain]\nkind = \"flat\"\nmaterial = \"soft-sand\"\n[sim]");
+  text.replace(text.find("[sim]"), 5,
+               "[terrain]\nkind = \"flat\"\nmaterial = \"soft-sand\"\n[sim]");
   const ScenarioResult r = run(text);
   for (const std::string& name : soil_metric_names()) {
     ASSERT_TRUE(r.metrics.contains(name)) << name;
@@ -161,7 +162,8 @@ TEST(ScenarioRunner, ReportsTheRunsAndEachPhasesMetrics) {
 TEST(ScenarioRunner, EvaluatesRatiosAndReportsAMissingMetric) {
   const ScenarioResult r = run(kShortDrive);
   ASSERT_EQ(r.checks.size(), 3u);
-  EXPECT_EQ(r.checks[0].value, r.metrics.at("driving.path_length_m") / r.metrics.at("driving.duration_s"));
+  EXPECT_EQ(r.checks[0].value,
+            r.metrics.at("driving.path_length_m") / r.metrics.at("driving.duration_s"));
   EXPECT_TRUE(r.checks[0].passed);
   EXPECT_EQ(r.checks[0].limit, ">= 0.05");
   EXPECT_TRUE(r.checks[1].passed);

@@ -155,8 +155,8 @@ bool RoverPhysics::Impl::chassis_near_soil() const {
 }
 
 // Each time the grid yields (10 ms), and when the rover is set down or the soil raked: the grid's
-// changes into the field, and whether the chassis can reach the soil before the next time. The field's collision with a geom costs MuJoCo a pass over every
-// cell under the geom's box (the axles span 27 cells by 4) even when nothing touches, as much as
+// changes into the field, and whether the chassis can reach the soil before the next time. The
+// field's collision with a geom costs MuJoCo a pass over every cell under the geom's box (the axles span 27 cells by 4) even when nothing touches, as much as
 // the soil model's own step; so the field is met only while some geom comes within
 // kSoilFieldReachM (2 cm) of the soil under it. A heap that rises or a chassis that sinks faster
 // than 2 cm in 10 ms, 2 m/s, would be missed.

@@ -87,8 +87,8 @@ inline constexpr double kStepLow = 5.9631716539705866e-12;  // and the rest
 template <class Value>
 inline Value exp_reduced_polynomial(Value r) {
   const Value r2 = r * r;
-  return 1.0 + r +
-         r2 * ((0.5 + r * (1.0 / 6.0)) + r2 * ((1.0 / 24.0 + r * (1.0 / 120.0)) + r2 * (1.0 / 720.0)));
+  const Value high = (1.0 / 24.0 + r * (1.0 / 120.0)) + r2 * (1.0 / 720.0);  // r⁴… terms
+  return 1.0 + r + r2 * ((0.5 + r * (1.0 / 6.0)) + r2 * high);
 }
 
 // What differs between one value and a pair: the integer type of the same width, a constant of

@@ -120,7 +120,8 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
   for (int k = first - 1; k >= 0; --k) {
     const double from = k - shift;  // in (−0.5, 0]: on the ramp from the entry
     const double ramp = from > -0.5 ? (from + 0.5) / 0.5 : 0.0;
-    jt[k] = entry_t * ramp + (spin_term - travel_mps * cosines_[static_cast<std::size_t>(k)]) * dt_s;
+    const double cosine = cosines_[static_cast<std::size_t>(k)];
+    jt[k] = entry_t * ramp + (spin_term - travel_mps * cosine) * dt_s;
     jy[k] = entry_y * ramp + lateral_step;
   }
 }

@@ -168,10 +168,6 @@ inline DoublePair mobilised(DoublePair displacement_m, double inverse_shear_modu
   return displacement_m < 0.0 ? -share : share;
 }
 
-}  // namespace detail
-
-namespace detail {
-
 // The depth r·(cos θ* − cos θ1) Bekker's pressure is taken at, 0 outside the arc.
 inline double bekker_depth_m(const ContactArc& arc, double rim_radius_m, double cos_equivalent) {
   return rim_radius_m * std::max(cos_equivalent - arc.cos_entry, 0.0);

@@ -258,9 +258,10 @@ TEST(RoverSoftSoil, TheFieldIsMetOnlyWhereTheChassisNearsTheSoil) {
     ASSERT_FALSE(physics.soil_field_met()) << "step " << i;
   }
   const double axle_x = physics.truth().wheel_position_m[kFrontLeft][0];
-  raise_soil(
-      physics, [&](double x, double y) { return std::abs(x - axle_x) < 0.06 && std::abs(y) < 0.15; },
-      0.10);
+  const auto under_the_axle = [&](double x, double y) {
+    return std::abs(x - axle_x) < 0.06 && std::abs(y) < 0.15;
+  };
+  raise_soil(physics, under_the_axle, 0.10);
   run(physics, 10);
   EXPECT_TRUE(physics.soil_field_met());
   RoverPhysics rigid(Params{}, TerrainSpec{});

@@ -1,6 +1,6 @@
 // exp_nonpositive against std::exp: within 3 units in the last place over its range, exact at 0,
-// held at its floor below −708, NaN kept; its pair lane by lane the same bits; sin_cos against std::sin and
-// std::cos.
+// held at its floor below −708, NaN kept; its pair lane by lane the same bits; sin_cos against
+// std::sin and std::cos.
 #include "sim/soil/fast_math.hpp"
 
 #include <gtest/gtest.h>

@@ -99,7 +99,8 @@ TEST(SoftSoil, SpinningInPlaceDigsAHole) {
 // it level starts the period again; a period of 0 yields every step.
 TEST(SoftSoil, TheGridYieldsOncePerPeriod) {
   SoftSoil soil = one_wheel_on_flat_sand();
-  const WheelKinematics wheel{{0.0, 0.0, 0.10}, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.0}, 2.0};  // 1.5 cm in
+  // 1.5 cm into the sand, spinning at 2 rad/s in place.
+  const WheelKinematics wheel{{0.0, 0.0, 0.10}, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.0}, 2.0};
   // Spinning in place at 2 rad/s, all three lanes in: f_e·b·h·r_s·ω over each 10 ms.
   const WheelGeometry geometry;
   const double per_period = dry_sand().excavation_fraction * geometry.width_m *
@@ -160,15 +161,17 @@ TEST(SoftSoil, YieldingEvery10msAgainstYieldingEveryStep) {
 }
 
 // The blades' spoil lands one cell behind the rim; the repose reaches it there too, so it spreads
-// rather than standing as a one-cell tower (without: 0.36 m after 3 s of spinning in place; yielding
-// every 10 ms, 0.79 m at 2.75 s, before it fell into the hole and threw the wheel up 2 cm).
+// rather than standing as a one-cell tower (without: 0.36 m after 3 s of spinning in place;
+// yielding every 10 ms, 0.79 m at 2.75 s, before it fell into the hole and threw the wheel up 2 cm).
 TEST(SoftSoil, SpoilSpreadsBehindASpinningWheel) {
   for (const double period : {0.0, SoftSoil::kYieldPeriodS}) {
     SoftSoil soil = one_wheel_on_flat_sand(period);
     run_vertical_rig(soil, 2.0, 0.0, 3.0);
     double highest = 0.0;
     for (int iy = 0; iy < 60; ++iy) {
-      for (int ix = 0; ix < 300; ++ix) highest = std::max(highest, soil.grid().cell_surface_m(ix, iy));
+      for (int ix = 0; ix < 300; ++ix) {
+        highest = std::max(highest, soil.grid().cell_surface_m(ix, iy));
+      }
     }
     EXPECT_LT(highest, 0.03) << period;
     EXPECT_GT(highest, 0.0) << period;  // the spoil is there
