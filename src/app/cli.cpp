@@ -13,6 +13,7 @@
 #include "app/calibrate_command.hpp"
 #include "app/decode_command.hpp"
 #include "app/scenario_command.hpp"
+#include "app/number_checks.hpp"
 #include "app/slope_sweep_command.hpp"
 #include "app/soak_command.hpp"
 #include "config/calibration.hpp"
@@ -30,7 +31,7 @@ const CLI::Validator kSeed(
     [](std::string& text) -> std::string {
       const auto first = text.find_first_not_of(" \t");
       if (first != std::string::npos && text[first] == '-') {
-        return "--seed: " + text + " is negative; a seed is an integer ≥ 0";
+        return text + " is negative; a seed is an integer ≥ 0";
       }
       return {};
     },
@@ -117,7 +118,7 @@ void add_console_options(CLI::App* cmd, runner::ConsoleArgs& c) {
   cmd->add_option("--web", c.web, "the console's build folder (default web/dist)");
   cmd->add_flag("--no-console", c.no_console, "no HTTP/WebSocket server");
   cmd->add_option("--status-rate", c.status_rate_hz, "status messages per second")
-      ->check(CLI::Range(1.0, 64.0));
+      ->check(finite_range(1.0, 64.0));
 }
 
 void add_offline_commands(CLI::App& cli, Commands& c) {
@@ -153,7 +154,7 @@ void add_offline_commands(CLI::App& cli, Commands& c) {
   cmd->add_option("--physics-step-ms", scenario.physics_step_ms,
                   "MuJoCo's time step in ms (default: the simulator's, BENCHMARKS.md); the "
                   "controllers and the bus keep their own timing")
-      ->check(CLI::Range(0.25, 5.0));
+      ->check(finite_range(0.25, 5.0));
 }
 
 void add_soak_and_replay(CLI::App& cli, Commands& c) {
@@ -180,7 +181,7 @@ void add_live_commands(CLI::App& cli, Commands& c) {
       ->check(CLI::ExistingFile);
   run_cmd->add_option("--seed", run.seed, "the simulator's seed")->check(kSeed);
   run_cmd->add_option("--duration", run.duration_s, "stop after this many seconds (default: on Ctrl-C)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   run_cmd->add_option("--record", run.record,
                       "write can.log, operator.jsonl, telemetry.csv and recording.mcap here");
   run_cmd->add_flag("--quiet", run.quiet, "no status line in the terminal");
@@ -194,7 +195,7 @@ void add_live_commands(CLI::App& cli, Commands& c) {
       ->check(CLI::ExistingFile);
   sim_cmd->add_option("--seed", sim.seed, "the simulator's seed")->check(kSeed);
   sim_cmd->add_option("--duration", sim.duration_s, "stop after this many seconds")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   sim_cmd->add_option("--firmware", sim.firmware,
                       "run the controllers' real firmware (DIR/mu0..mu8.elf, make firmware) in "
                       "simavr instead of the emulation")
@@ -207,7 +208,7 @@ void add_live_commands(CLI::App& cli, Commands& c) {
       ->required();
   add_console_options(drive_cmd, drive.console);
   drive_cmd->add_option("--duration", drive.duration_s, "stop after this many seconds")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_non_negative());
   drive_cmd->add_flag("--quiet", drive.quiet, "no status line in the terminal");
   drive_cmd->add_option("--record", drive.record,
                         "write can.log, operator.jsonl, telemetry.csv and recording.mcap here");
@@ -236,7 +237,7 @@ void add_calibrate_command(CLI::App& cli, Commands& c) {
                   "the simulated ground (--sim): hard (default), sand, grass, soft-sand, lunar-soil");
   cmd->add_option("--duration", calibrate.duration_s,
                   "how long to measure [s] (motor-scale, response, voltage)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   cmd->add_option("--icr", calibrate.icr, "the PWM period register (motor-curve, load, load-gain)")
       ->check(CLI::Range(255, 2047));
   cmd->add_option("--from", calibrate.from,

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <ostream>
 
+#include "app/number_checks.hpp"
 #include "runner/slope_sweep.hpp"
 
 namespace marsokhod::app {
@@ -29,13 +30,13 @@ CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args) {
   cmd->add_option("--ground", args.ground, "a soft soil: soft-sand (default) or lunar-soil");
   cmd->add_option("--distance", args.distance_m,
                   "metres along the slope that count as climbed (default 0.1)")
-      ->check(CLI::Range(0.001, 100.0));
+      ->check(finite_range(0.001, 100.0));
   cmd->add_option("--time", args.time_s, "seconds of driving or walking a climb gets (default 40)")
-      ->check(CLI::Range(1.0, 3600.0));
+      ->check(finite_range(1.0, 3600.0));
   cmd->add_option("--step", args.step_deg, "the angles' resolution in degrees (default 0.5)")
-      ->check(CLI::Range(0.1, 10.0));
+      ->check(finite_range(0.1, 10.0));
   cmd->add_option("--drive", args.drive_radps, "v1 when driving, rad/s (default 1.0)")
-      ->check(CLI::Range(0.01, 100.0));
+      ->check(finite_range(0.01, 100.0));
   return cmd;
 }
 

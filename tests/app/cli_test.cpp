@@ -129,6 +129,54 @@ TEST(Cli, SlopeSweepRefusesRigidGroundAndBadNumbers) {
   EXPECT_NE(r.err.find("--step"), std::string::npos) << r.err;
 }
 
+// CLI11's range checks compare, and every comparison with NaN is false: "--duration nan" ran
+// without an end and "--distance nan" swept for nothing. Every real-valued option refuses a
+// number that is not finite, naming the option, and one out of its bounds with the bounds.
+TEST(Cli, RealValuedOptionsRefuseNaNAndInfinity) {
+  const std::vector<std::vector<const char*>> cases = {
+      {"run", "--duration", "nan"},
+      {"sim", "--duration", "inf"},
+      {"drive", "--can", "socketcan:vcan0", "--duration", "-nan"},
+      {"calibrate", "motor-scale", "--sim", "--duration", "nan"},
+      {"run", "--status-rate", "nan"},
+      {"scenario", "straight-and-spin", "--physics-step-ms", "nan"},
+      {"slope-sweep", "--distance", "nan"},
+      {"slope-sweep", "--time", "inf"},
+      {"slope-sweep", "--step", "nan"},
+      {"slope-sweep", "--drive", "1e999"},
+  };
+  for (const std::vector<const char*>& words : cases) {
+    std::vector<const char*> args = {"--config", kConfig.c_str()};
+    args.insert(args.end(), words.begin(), words.end());
+    const Result r = cli(args);
+    const std::string option = words[words.size() - 2];
+    EXPECT_EQ(r.status, 2) << option;
+    EXPECT_NE(r.err.find(option + ": " + words.back() + " is not a finite number"),
+              std::string::npos)
+        << option << ": " << r.err;
+  }
+  Result r = cli({"--config", kConfig.c_str(), "slope-sweep", "--distance", "0"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--distance: 0 is out of range; a number in [0.001, 100]"),
+            std::string::npos)
+      << r.err;
+  r = cli({"--config", kConfig.c_str(), "run", "--duration", "-1"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--duration: -1 is out of range; a finite number ≥ 0"), std::string::npos)
+      << r.err;
+  r = cli({"--config", kConfig.c_str(), "calibrate", "motor-scale", "--sim", "--duration", "0"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--duration: 0 is out of range; a finite number > 0"), std::string::npos)
+      << r.err;
+  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--distance", "abc"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--distance: abc is not a number"), std::string::npos) << r.err;
+  // A finite number inside the bounds passes on to the command (which refuses the hard ground).
+  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--distance", "5e-1", "--ground", "hard"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--ground hard is not a soft soil"), std::string::npos) << r.err;
+}
+
 TEST(Cli, TheShippedScenariosAreListed) {
   const Result r = cli({"--config", kConfig.c_str(), "scenario", "--list"});
   EXPECT_EQ(r.status, 0) << r.err;
