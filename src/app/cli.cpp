@@ -12,8 +12,8 @@
 
 #include "app/calibrate_command.hpp"
 #include "app/decode_command.hpp"
-#include "app/scenario_command.hpp"
 #include "app/number_checks.hpp"
+#include "app/scenario_command.hpp"
 #include "app/slope_sweep_command.hpp"
 #include "app/soak_command.hpp"
 #include "config/calibration.hpp"

@@ -133,48 +133,42 @@ TEST(Cli, SlopeSweepRefusesRigidGroundAndBadNumbers) {
 // without an end and "--distance nan" swept for nothing. Every real-valued option refuses a
 // number that is not finite, naming the option, and one out of its bounds with the bounds.
 TEST(Cli, RealValuedOptionsRefuseNaNAndInfinity) {
-  const std::vector<std::vector<const char*>> cases = {
-      {"run", "--duration", "nan"},
-      {"sim", "--duration", "inf"},
-      {"drive", "--can", "socketcan:vcan0", "--duration", "-nan"},
-      {"calibrate", "motor-scale", "--sim", "--duration", "nan"},
-      {"run", "--status-rate", "nan"},
-      {"scenario", "straight-and-spin", "--physics-step-ms", "nan"},
-      {"slope-sweep", "--distance", "nan"},
-      {"slope-sweep", "--time", "inf"},
-      {"slope-sweep", "--step", "nan"},
-      {"slope-sweep", "--drive", "1e999"},
+  struct Case {
+    std::vector<const char*> words;
+    std::string message;
   };
-  for (const std::vector<const char*>& words : cases) {
+  const std::vector<Case> cases = {
+      {{"run", "--duration", "nan"}, "--duration: nan is not a finite number"},
+      {{"sim", "--duration", "inf"}, "--duration: inf is not a finite number"},
+      {{"drive", "--can", "socketcan:vcan0", "--duration", "-nan"},
+       "--duration: -nan is not a finite number"},
+      {{"calibrate", "motor-scale", "--sim", "--duration", "nan"},
+       "--duration: nan is not a finite number"},
+      {{"run", "--status-rate", "nan"}, "--status-rate: nan is not a finite number"},
+      {{"scenario", "straight-and-spin", "--physics-step-ms", "nan"},
+       "--physics-step-ms: nan is not a finite number"},
+      {{"slope-sweep", "--distance", "nan"}, "--distance: nan is not a finite number"},
+      {{"slope-sweep", "--time", "inf"}, "--time: inf is not a finite number"},
+      {{"slope-sweep", "--step", "nan"}, "--step: nan is not a finite number"},
+      {{"slope-sweep", "--drive", "1e999"}, "--drive: 1e999 is not a finite number"},
+      {{"slope-sweep", "--distance", "0"},
+       "--distance: 0 is out of range; a number in [0.001, 100]"},
+      {{"run", "--duration", "-1"}, "--duration: -1 is out of range; a finite number ≥ 0"},
+      {{"calibrate", "motor-scale", "--sim", "--duration", "0"},
+       "--duration: 0 is out of range; a finite number > 0"},
+      {{"slope-sweep", "--distance", "abc"}, "--distance: abc is not a number"},
+      {{"slope-sweep", "--distance", " 1"}, "--distance:  1 is not a number"},
+      // A finite number inside the bounds passes on to the command (which refuses the ground).
+      {{"slope-sweep", "--distance", "5e-1", "--ground", "hard"},
+       "--ground hard is not a soft soil"},
+  };
+  for (const Case& c : cases) {
     std::vector<const char*> args = {"--config", kConfig.c_str()};
-    args.insert(args.end(), words.begin(), words.end());
+    args.insert(args.end(), c.words.begin(), c.words.end());
     const Result r = cli(args);
-    const std::string option = words[words.size() - 2];
-    EXPECT_EQ(r.status, 2) << option;
-    EXPECT_NE(r.err.find(option + ": " + words.back() + " is not a finite number"),
-              std::string::npos)
-        << option << ": " << r.err;
+    EXPECT_EQ(r.status, 2) << c.message;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.message << ": " << r.err;
   }
-  Result r = cli({"--config", kConfig.c_str(), "slope-sweep", "--distance", "0"});
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("--distance: 0 is out of range; a number in [0.001, 100]"),
-            std::string::npos)
-      << r.err;
-  r = cli({"--config", kConfig.c_str(), "run", "--duration", "-1"});
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("--duration: -1 is out of range; a finite number ≥ 0"), std::string::npos)
-      << r.err;
-  r = cli({"--config", kConfig.c_str(), "calibrate", "motor-scale", "--sim", "--duration", "0"});
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("--duration: 0 is out of range; a finite number > 0"), std::string::npos)
-      << r.err;
-  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--distance", "abc"});
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("--distance: abc is not a number"), std::string::npos) << r.err;
-  // A finite number inside the bounds passes on to the command (which refuses the hard ground).
-  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--distance", "5e-1", "--ground", "hard"});
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("--ground hard is not a soft soil"), std::string::npos) << r.err;
 }
 
 TEST(Cli, TheShippedScenariosAreListed) {
