@@ -1,7 +1,6 @@
 #include "app/number_checks.hpp"
 
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -13,14 +12,13 @@ namespace {
 std::string parse_finite(const std::string& text, double& value) {
   const char* begin = text.c_str();
   char* end = nullptr;
-  errno = 0;
-  value = std::strtod(begin, &end);
+  value = std::strtod(begin, &end);  // overflow gives ±HUGE_VAL, underflow a number near 0
   // As CLI11 converts it afterwards: the whole text, no spaces around it.
   if (text.empty() || std::isspace(static_cast<unsigned char>(text.front())) != 0 ||
       end != begin + text.size()) {
     return text + " is not a number";
   }
-  if (!std::isfinite(value) || errno == ERANGE) return text + " is not a finite number";
+  if (!std::isfinite(value)) return text + " is not a finite number";
   return {};
 }
 

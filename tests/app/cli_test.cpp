@@ -151,6 +151,9 @@ TEST(Cli, RealValuedOptionsRefuseNaNAndInfinity) {
       {{"slope-sweep", "--time", "inf"}, "--time: inf is not a finite number"},
       {{"slope-sweep", "--step", "nan"}, "--step: nan is not a finite number"},
       {{"slope-sweep", "--drive", "1e999"}, "--drive: 1e999 is not a finite number"},
+      // Underflow is a number near 0, not an infinity: out of range here, not "not finite".
+      {{"slope-sweep", "--distance", "1e-400"},
+       "--distance: 1e-400 is out of range; a number in [0.001, 100]"},
       {{"slope-sweep", "--distance", "0"},
        "--distance: 0 is out of range; a number in [0.001, 100]"},
       {{"run", "--duration", "-1"}, "--duration: -1 is out of range; a finite number ≥ 0"},
