@@ -354,6 +354,16 @@ constexpr ParamSpec kSafety[] = {
     {.key = "stuck_min_yaw_rate_radps", .field = field<&SafetyParams::stuck_min_yaw_rate_radps>,
      .min = 0.01, .max = 3.0, .unit = "rad/s", .source = "docs/decisions.md",
      .about = "a rover the gyro sees turning faster than this is not stuck"},
+    {.key = "joint_blocked_time_s", .field = field<&SafetyParams::joint_blocked_time_s>,
+     .min = 0.0, .max = 600.0, .unit = "s", .source = "docs/decisions.md",
+     .about = "a joint stalled under a command this long ⇒ joint blocked fault, stop (0: off)"},
+    {.key = "joint_blocked_min_command_radps",
+     .field = field<&SafetyParams::joint_blocked_min_command_radps>, .min = 0.01, .max = 3.0,
+     .unit = "rad/s", .source = "docs/decisions.md",
+     .about = "a joint's |ν| that counts as driving it for the blocked check"},
+    {.key = "joint_blocked_turning_share", .field = field<&SafetyParams::joint_blocked_turning_share>,
+     .min = 0.0, .max = 0.99, .source = "docs/decisions.md",
+     .about = "stalled: the joint turns at most this share of its command (|w| ≤ s·|ν|)"},
 };
 
 constexpr ParamSpec kNavigation[] = {

@@ -229,6 +229,11 @@ struct SafetyParams {
   double stuck_min_command_radps = 0.2;      // the centre wheels' mean |ν| that counts as driving
   double stuck_turning_share = 0.2;          // stalled: Σ|w| ≤ this · Σ|ν| of the centre wheels
   double stuck_min_yaw_rate_radps = 0.1;     // a rover turning faster is not stuck
+  // A joint stalled under a command ⇒ "front joint blocked" / "rear joint blocked" fault after
+  // joint_blocked_time_s (0: off).
+  double joint_blocked_time_s = 5.0;
+  double joint_blocked_min_command_radps = 0.2;  // the joint's |ν| that counts as driving it
+  double joint_blocked_turning_share = 0.2;      // stalled: |w| ≤ this · |ν|
 };
 
 // Missions for application software (core/navigation/mission.hpp): how the driver turns,

@@ -37,6 +37,9 @@ Driver::Driver(const Params& params, std::optional<JointMemory> kept)
                  params.safety.tip_over_time_constant_s}),
       stuck_({params.safety.stuck_time_s, params.safety.stuck_min_command_radps,
               params.safety.stuck_turning_share, params.safety.stuck_min_yaw_rate_radps}),
+      joint_blocked_({params.safety.joint_blocked_time_s,
+                      params.safety.joint_blocked_min_command_radps,
+                      params.safety.joint_blocked_turning_share}),
       missions_(params),
       // An anchor of the null's drift: a second of standing (64 readings of (3.4)).
       null_drift_(params.sensors.gyro_radps_per_count,
@@ -419,19 +422,29 @@ void Driver::update_failsafes(double period_s) {
     if (const auto fault = tip_over_.update(status_.accel_mps2, period_s)) latch(*fault, "tip-over");
     status_.attitude = tip_over_.attitude();
   }
+  // ν of (4.4) and the measured w of two motors, for a stall check.
+  const auto pair = [this](std::size_t a, std::size_t b, std::array<double, 2>& no_load,
+                           std::array<double, 2>& velocity) {
+    no_load = {status_.motors[a].no_load_velocity_radps, status_.motors[b].no_load_velocity_radps};
+    velocity = {motors_.sample().velocity_radps[a], motors_.sample().velocity_radps[b]};
+  };
   estimation::StuckInput in;
   in.period_s = period_s;
-  for (std::size_t k = 0; k < 2; ++k) {
-    const std::size_t i = k == 0 ? kCenterLeft : kCenterRight;
-    in.no_load_radps[k] = status_.motors[i].no_load_velocity_radps;
-    in.velocity_radps[k] = motors_.sample().velocity_radps[i];
-  }
+  pair(kCenterLeft, kCenterRight, in.no_load_radps, in.velocity_radps);
   in.yaw_rate_radps = status_.yaw_rate_radps;
   in.driving = status_.mode == DriverMode::kDriving;  // the mode of the cycle before
   in.motion_asked = targets_.v1_radps != 0.0 || targets_.v2_radps != 0.0 ||
                     (targets_.gait != mobility::Gait::kNone && targets_.gait_speed != 0.0);
   if (const auto fault = stuck_.update(in)) latch(*fault, "stuck");
   status_.stalled_s = stuck_.stalled_s();
+  estimation::JointBlockedInput joints;
+  joints.period_s = period_s;
+  pair(kFrontJoint, kRearJoint, joints.no_load_radps, joints.velocity_radps);
+  joints.driving = in.driving;
+  for (const std::string& fault : joint_blocked_.update(joints)) {
+    latch(fault, fault.starts_with("front") ? "front joint blocked" : "rear joint blocked");
+  }
+  status_.joint_stalled_s = joint_blocked_.stalled_s();
 }
 
 bool Driver::on_slope() const {

@@ -88,6 +88,7 @@ class Driver {
   estimation::PoseEstimator pose_;
   estimation::TipOverMonitor tip_over_;
   estimation::StuckMonitor stuck_;
+  estimation::JointBlockedMonitor joint_blocked_;
   navigation::MissionRunner missions_;
   estimation::NullDriftCorrection null_drift_;
   estimation::PoseCorrection pose_correction_;  // from this cycle's gyro reading, for update_pose

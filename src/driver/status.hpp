@@ -98,9 +98,11 @@ struct DriverStatus {
   // the odometry frame of where this driver's start-up ended.
   estimation::Pose pose;
   // The failsafes of core/estimation/failsafes.hpp: the chassis' attitude from the mean gravity
-  // (+ left side up, + nose down), and how long the wheels have been stalled.
+  // (+ left side up, + nose down), how long the wheels have been stalled, and how long each
+  // joint (front, rear) has been stalled under its command.
   estimation::Attitude attitude;
   double stalled_s = 0.0;
+  std::array<double, 2> joint_stalled_s{};
   // The operator's mission (core/navigation/mission.hpp): cmd_vel, turn, move, goto.
   navigation::MissionStatus mission;
   // The run-time settings in force this cycle (the operator's configure, a scenario's [runtime]).

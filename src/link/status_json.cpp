@@ -133,6 +133,7 @@ Json status_json(const driver::DriverStatus& s, const Json& truth) {
       {"pose", pose_json(s.pose)},
       {"attitude", Json{{"roll_rad", s.attitude.roll_rad}, {"pitch_rad", s.attitude.pitch_rad}}},
       {"stalled_s", s.stalled_s},
+      {"joint_stalled_s", Json::array({s.joint_stalled_s[0], s.joint_stalled_s[1]})},
       {"mission", mission_json(s.mission)},
       {"settings", runtime_settings_json(s.settings)},
   };

@@ -31,7 +31,8 @@ const std::vector<std::string>& run_metric_names() {
       "odometry_position_error_m", "odometry_position_error_share", "odometry_heading_error_rad",
       "odometry_position_sigma_m", "wheel_odometry_position_error_m",
       "wheel_odometry_heading_error_rad", "max_roll_rad", "max_pitch_rad", "tip_over_faults",
-      "stuck_faults", "first_tip_over_s", "first_stuck_s", "other_faults", "missions_started",
+      "stuck_faults", "joint_blocked_faults", "first_tip_over_s", "first_stuck_s",
+      "first_joint_blocked_s", "max_joint_stall_s", "other_faults", "missions_started",
       "missions_reached", "missions_aborted", "mission_corrections", "final_mission_progress",
       "max_lateral_speed_mps", "max_lateral_drift_mps"};
   static const std::vector<std::string> with_soil = [] {
@@ -212,8 +213,19 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   }
   tip_over_latched_ = tip_over;
   stuck_latched_ = stuck;
+  const std::size_t joints_blocked = static_cast<std::size_t>(
+      std::count_if(s.faults.begin(), s.faults.end(), [](const std::string& f) {
+        return f.starts_with("front joint blocked") || f.starts_with("rear joint blocked");
+      }));
+  if (joints_blocked > joints_blocked_) {
+    joint_blocked_faults_ += static_cast<double>(joints_blocked - joints_blocked_);
+    if (first_joint_blocked_s_ < 0.0) first_joint_blocked_s_ = now;
+  }
+  joints_blocked_ = joints_blocked;
+  max_joint_stall_s_ = std::max({max_joint_stall_s_, s.joint_stalled_s[0], s.joint_stalled_s[1]});
   other_faults_ = std::max(other_faults_, static_cast<double>(s.faults.size()) - (tip_over ? 1.0 : 0.0) -
-                                              (stuck ? 1.0 : 0.0));
+                                              (stuck ? 1.0 : 0.0) -
+                                              static_cast<double>(joints_blocked));
   malformed_ = static_cast<double>(s.bus.malformed);
   observe_missions(s.mission);
 }
@@ -357,8 +369,11 @@ std::map<std::string, double> Metrics::finish(const Session& session) const {
   m["max_pitch_rad"] = max_pitch_rad_;
   m["tip_over_faults"] = tip_over_faults_;
   m["stuck_faults"] = stuck_faults_;
+  m["joint_blocked_faults"] = joint_blocked_faults_;
   m["first_tip_over_s"] = first_tip_over_s_;
   m["first_stuck_s"] = first_stuck_s_;
+  m["first_joint_blocked_s"] = first_joint_blocked_s_;
+  m["max_joint_stall_s"] = max_joint_stall_s_;
   m["other_faults"] = other_faults_;
   m["missions_started"] = missions_started_;
   m["missions_reached"] = missions_reached_;

@@ -20,10 +20,12 @@
 // odometry of diff_drive_controller's formula over the three wheels of each side (v = r·(w̄_L +
 // w̄_R)/2, ω = r·(w̄_R − w̄_L)/track): wheel_odometry_position_error_m,
 // wheel_odometry_heading_error_rad. The failsafes: max_roll_rad and max_pitch_rad (|roll|,
-// |pitch| of the centre unit, ground truth, the whole run), tip_over_faults and stuck_faults (how
-// often the driver latched that fault), first_tip_over_s and first_stuck_s (when it first did;
-// −1: never), other_faults (like driver_faults, the most faults latched at once, not counting
-// these two). The operator's missions (core/navigation/mission.hpp): missions_started,
+// |pitch| of the centre unit, ground truth, the whole run), tip_over_faults, stuck_faults and
+// joint_blocked_faults (how often the driver latched that fault; a joint blocked: either joint's),
+// first_tip_over_s, first_stuck_s and first_joint_blocked_s (when it first did; −1: never),
+// max_joint_stall_s (the longest either joint stood stalled under its command, the driver's
+// joint_stalled_s: how near the joint-blocked failsafe came),
+// other_faults (like driver_faults, the most faults latched at once, not counting these three). The operator's missions (core/navigation/mission.hpp): missions_started,
 // missions_reached, missions_aborted (each mission once; a driver restart starts counting its
 // missions again from its own ids), mission_corrections (legs driven again, over the reached
 // missions), final_mission_progress (the last mission's progress at the end, 0..1).
@@ -137,10 +139,12 @@ class Metrics {
   double max_lateral_speed_mps_ = 0.0;
   SidewaysDrift sideways_drift_;
   double max_lateral_drift_mps_ = 0.0;
-  double tip_over_faults_ = 0.0, stuck_faults_ = 0.0;
-  double first_tip_over_s_ = -1.0, first_stuck_s_ = -1.0;
+  double tip_over_faults_ = 0.0, stuck_faults_ = 0.0, joint_blocked_faults_ = 0.0;
+  double first_tip_over_s_ = -1.0, first_stuck_s_ = -1.0, first_joint_blocked_s_ = -1.0;
   double other_faults_ = 0.0;
   bool tip_over_latched_ = false, stuck_latched_ = false;
+  std::size_t joints_blocked_ = 0;
+  double max_joint_stall_s_ = 0.0;  // "front/rear joint blocked" faults latched the cycle before
   // Missions (core/navigation): counted as the driver's status shows them.
   std::uint64_t last_mission_id_ = 0;
   navigation::MissionState last_mission_state_ = navigation::MissionState::kIdle;

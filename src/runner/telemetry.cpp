@@ -33,7 +33,8 @@ std::string telemetry_header() {
        "computer_on,energy_j";
   for (std::size_t w = 0; w < kWheelCount; ++w) h += std::string(",slip_") + kMotorNames[w] + "_mps";
   h += ",odo_x_m,odo_y_m,odo_heading_rad,odo_speed_mps,odo_distance_m,odo_sigma_m,"
-       "odo_heading_sigma_rad,roll_rad,pitch_rad,stalled_s,supply_current_bound_a,current_duty_bound";
+       "odo_heading_sigma_rad,roll_rad,pitch_rad,stalled_s,supply_current_bound_a,current_duty_bound,"
+       "front_joint_stalled_s,rear_joint_stalled_s";
   return h;
 }
 
@@ -81,7 +82,8 @@ std::string telemetry_row(double time_s, bool running, const driver::DriverStatu
   const estimation::Pose& p = s.pose;
   for (double v : {p.x_m, p.y_m, p.heading_rad, p.speed_mps, p.distance_m, p.position_sigma_m(),
                    p.heading_sigma_rad(), s.attitude.roll_rad, s.attitude.pitch_rad, s.stalled_s,
-                   s.supply_current_bound_a, s.current_duty_bound}) {
+                   s.supply_current_bound_a, s.current_duty_bound, s.joint_stalled_s[0],
+                   s.joint_stalled_s[1]}) {
     add(row, v);
   }
   return row;

@@ -46,6 +46,8 @@ driver::DriverStatus sample_status() {
   s.operator_timeout = false;
   s.operator_rejection = "v1 = 9 is out of range";
   s.faults = {"µ3 silent"};
+  s.stalled_s = 1.25;
+  s.joint_stalled_s = {2.5, 0.0};
   s.warnings = {"supply 19.8 V near the brown-out voltage"};
   s.bus = {100, 1, 2, 3, 4, "bad dlc"};
   s.lcd = "24.0V ok";
@@ -93,6 +95,8 @@ TEST(StatusJson, CarriesEveryFieldUnderItsKey) {
   EXPECT_EQ(j["operator_timeout"], false);
   EXPECT_EQ(j["operator_rejection"], "v1 = 9 is out of range");
   EXPECT_EQ(j["faults"], nlohmann::json({"µ3 silent"}));
+  EXPECT_EQ(j["stalled_s"], 1.25);
+  EXPECT_EQ(j["joint_stalled_s"], nlohmann::json({2.5, 0.0}));
   EXPECT_EQ(j["warnings"].size(), 1U);
   EXPECT_EQ(j["bus"]["frames"], 100);
   EXPECT_EQ(j["bus"]["missed"], 4);

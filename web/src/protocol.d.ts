@@ -391,6 +391,8 @@ export interface Status {
   pose: Pose;
   attitude: Attitude;
   stalled_s: StatusNumber;
+  /** Front and rear joint; absent from older servers. */
+  joint_stalled_s?: StatusNumber[];
   /** Absent from servers without missions. */
   mission?: MissionStatus;
   /** The run-time settings in force; absent from older servers. */

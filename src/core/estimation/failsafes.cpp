@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <numbers>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include "core/checks/checks.hpp"
 
@@ -15,6 +17,22 @@ constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 constexpr double kMinReadingMps2 = 0.981;  // a tenth of g
 
 bool in_range(double v, double lo, double hi) { return std::isfinite(v) && v > lo && v <= hi; }
+
+// The limits a stall check shares (stuck, joint blocked): T ≥ 0 (0: off), ν_min > 0, s in [0, 1).
+void validate_stall_limits(std::string_view who, double time_s, double min_command_radps,
+                           double turning_share) {
+  checks::law::require_finite(time_s, who, "time_s");
+  if (time_s < 0.0) {
+    throw std::invalid_argument(std::string(who) +
+                                ": time_s must be ≥ 0 (0 switches the check off), got " +
+                                checks::format_number(time_s));
+  }
+  checks::law::require_positive(min_command_radps, who, "min_command_radps");
+  if (!(std::isfinite(turning_share) && turning_share >= 0.0 && turning_share < 1.0)) {
+    throw std::invalid_argument(std::string(who) + ": turning_share must lie in [0, 1), got " +
+                                checks::format_number(turning_share));
+  }
+}
 
 }  // namespace
 
@@ -54,18 +72,9 @@ std::optional<std::string> TipOverMonitor::update(const std::array<double, 3>& a
 }
 
 StuckMonitor::StuckMonitor(StuckLimits limits) : limits_(limits) {
-  checks::law::require_finite(limits.time_s, "StuckMonitor", "time_s");
-  if (limits.time_s < 0.0) {
-    throw std::invalid_argument("StuckMonitor: time_s must be ≥ 0 (0 switches the check off), got " +
-                                checks::format_number(limits.time_s));
-  }
-  checks::law::require_positive(limits.min_command_radps, "StuckMonitor", "min_command_radps");
+  validate_stall_limits("StuckMonitor", limits.time_s, limits.min_command_radps,
+                        limits.turning_share);
   checks::law::require_positive(limits.min_yaw_rate_radps, "StuckMonitor", "min_yaw_rate_radps");
-  if (!(std::isfinite(limits.turning_share) && limits.turning_share >= 0.0 &&
-        limits.turning_share < 1.0)) {
-    throw std::invalid_argument("StuckMonitor: turning_share must lie in [0, 1), got " +
-                                checks::format_number(limits.turning_share));
-  }
 }
 
 std::optional<std::string> StuckMonitor::update(const StuckInput& in) {
@@ -98,6 +107,44 @@ std::optional<std::string> StuckMonitor::update(const StuckInput& in) {
   std::snprintf(text, sizeof text, "stuck: the centre wheels turned at %.0f %% of their command for %.1f s",
                 100.0 * turned_sum_ / command_sum_, stalled_s_);
   return std::string(text);
+}
+
+JointBlockedMonitor::JointBlockedMonitor(JointBlockedLimits limits) : limits_(limits) {
+  validate_stall_limits("JointBlockedMonitor", limits.time_s, limits.min_command_radps,
+                        limits.turning_share);
+}
+
+std::vector<std::string> JointBlockedMonitor::update(const JointBlockedInput& in) {
+  constexpr std::string_view kLaw = "JointBlockedMonitor::update";
+  checks::law::require_positive(in.period_s, kLaw, "period_s");
+  for (std::size_t j = 0; j < 2; ++j) {
+    checks::law::require_finite(in.no_load_radps[j], kLaw, checks::Element{"no_load_radps", j});
+    checks::law::require_finite(in.velocity_radps[j], kLaw, checks::Element{"velocity_radps", j});
+  }
+  std::vector<std::string> faults;
+  for (std::size_t j = 0; j < 2; ++j) {
+    const double commanded = std::abs(in.no_load_radps[j]);
+    const double turned = std::abs(in.velocity_radps[j]);
+    const bool stalled = limits_.time_s > 0.0 && in.driving &&
+                         commanded >= limits_.min_command_radps &&
+                         turned <= limits_.turning_share * commanded;
+    if (!stalled) {
+      stalled_s_[j] = turned_sum_[j] = command_sum_[j] = 0.0;
+      continue;
+    }
+    const bool before = stalled_s_[j] >= limits_.time_s;
+    stalled_s_[j] += in.period_s;
+    turned_sum_[j] += turned;
+    command_sum_[j] += commanded;
+    if (before || stalled_s_[j] < limits_.time_s) continue;
+    char text[128];
+    std::snprintf(text, sizeof text,
+                  "%s joint blocked: it turned at %.0f %% of its command (%.2f rad/s) for %.1f s",
+                  j == 0 ? "front" : "rear", 100.0 * turned_sum_[j] / command_sum_[j],
+                  command_sum_[j] * in.period_s / stalled_s_[j], stalled_s_[j]);
+    faults.emplace_back(text);
+  }
+  return faults;
 }
 
 }  // namespace marsokhod::estimation

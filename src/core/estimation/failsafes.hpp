@@ -1,6 +1,6 @@
 // Failsafes that need an estimate of the rover's state rather than one controller's answer
-// (pure, no I/O): the rover tipping over, and the rover stuck. Each turns into a latched fault
-// of the driver (driver.cpp), which stops the motors as any fault does.
+// (pure, no I/O): the rover tipping over, the rover stuck, a joint blocked. Each turns into a
+// latched fault of the driver (driver.cpp), which stops the motors as any fault does.
 //
 // Tip-over. The accelerometer of µ8 reads the specific force in the chassis frame (x forward,
 // y left, z up); at rest it is gravity, a = (0, 0, −g) on level ground. Its readings are averaged
@@ -31,11 +31,22 @@
 // cannot climb or bogged down to its axles. A rover whose wheels spin freely in place while it
 // does not advance is *not* detected: nothing on board measures its speed over the ground then
 // (the accelerometer reads the same at rest and at a constant speed).
+//
+// Joint blocked: driving, a joint motor commanded a no-load speed |ν| of at least ν_min turns at
+// |w| ≤ s·|ν| for T without a break. (4.16) drives a joint toward its target and 6.2.3's axle
+// placement moves ρ when the exterior axle cannot go (axle_placement.hpp), but once the joint
+// cannot bend by moving either side (a rigid front wheel in soft sand holds the front axle, and
+// the chassis cannot follow through the sand: Field Experiment 6.2's broken wheel during wheel
+// walking) nothing in the thesis ends the push: the joint motor would stall under its duty for as
+// long as the gait asks. A stall longer than T is a fault, named for its joint, that stops the
+// rover like the others. The same T, ν_min and s as the stuck check: the longest joint stall on
+// the shipped scenarios that came free on its own lasted 1.84 s (docs/decisions.md).
 #pragma once
 
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace marsokhod::estimation {
 
@@ -102,6 +113,40 @@ class StuckMonitor {
   double stalled_s_ = 0.0;
   double turned_sum_ = 0.0;   // Σ|w| and Σ|ν| over the stall, for the fault's text
   double command_sum_ = 0.0;
+};
+
+struct JointBlockedLimits {
+  double time_s = 5.0;             // T; 0 switches the check off
+  double min_command_radps = 0.2;  // ν_min
+  double turning_share = 0.2;      // s
+};
+
+struct JointBlockedInput {
+  double period_s = 0.0;
+  std::array<double, 2> no_load_radps{};   // ν of the front (µ6) and rear (µ7) joint, (4.4)
+  std::array<double, 2> velocity_radps{};  // w of the front and rear joint, measured
+  bool driving = false;                    // the driver is in driving mode
+};
+
+class JointBlockedMonitor {
+ public:
+  // Throws std::invalid_argument unless T ≥ 0, ν_min > 0 and s in [0, 1), all finite.
+  explicit JointBlockedMonitor(JointBlockedLimits limits = {});
+
+  // One cycle. Returns the faults' texts ("front joint blocked: …", "rear joint blocked: …") of
+  // the joints whose stall has lasted T in this cycle, front first; none in every other cycle.
+  // Throws std::invalid_argument naming the input when one is not finite or h ≤ 0.
+  std::vector<std::string> update(const JointBlockedInput& input);
+
+  // How long each joint (front, rear) has been stalled without a break [s].
+  const std::array<double, 2>& stalled_s() const { return stalled_s_; }
+  void reset() { stalled_s_ = {}; turned_sum_ = {}; command_sum_ = {}; }
+
+ private:
+  JointBlockedLimits limits_;
+  std::array<double, 2> stalled_s_{};
+  std::array<double, 2> turned_sum_{};  // Σ|w| and Σ|ν| over each stall, for the fault's text
+  std::array<double, 2> command_sum_{};
 };
 
 }  // namespace marsokhod::estimation

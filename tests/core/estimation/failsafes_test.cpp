@@ -169,5 +169,81 @@ TEST(StuckMonitor, BadLimitsAndInputsAreRejectedByName) {
   }
 }
 
+// The front and rear joint commanded ν, turning at w.
+JointBlockedInput joints(double nu_front, double w_front, double nu_rear = 0.0,
+                         double w_rear = 0.0, bool driving = true) {
+  JointBlockedInput in;
+  in.period_s = kH;
+  in.no_load_radps = {nu_front, nu_rear};
+  in.velocity_radps = {w_front, w_rear};
+  in.driving = driving;
+  return in;
+}
+
+TEST(JointBlockedMonitor, AJointStalledUnderItsCommandIsAFaultAfterTheConfiguredTime) {
+  JointBlockedMonitor m;  // T = 5 s: 320 cycles
+  // What the front joint showed contracting with a rigid front wheel in soft sand: driven at
+  // 0.72 rad/s, turning at 0.01.
+  const JointBlockedInput stalled = joints(0.72, 0.01);
+  for (int k = 1; k < 320; ++k) ASSERT_TRUE(m.update(stalled).empty()) << k;
+  EXPECT_DOUBLE_EQ(m.stalled_s()[0], 319.0 / 64.0);
+  EXPECT_EQ(m.stalled_s()[1], 0.0);
+  const auto faults = m.update(stalled);  // the 320th cycle: 5 s
+  ASSERT_EQ(faults.size(), 1u);
+  EXPECT_EQ(faults[0], "front joint blocked: it turned at 1 % of its command (0.72 rad/s) for 5.0 s");
+  EXPECT_TRUE(m.update(stalled).empty());  // reported once
+  // The rear joint on its own, negative commands as positive ones.
+  JointBlockedMonitor rear({.time_s = 1.0});
+  for (int k = 1; k < 64; ++k) ASSERT_TRUE(rear.update(joints(0.0, 0.0, -0.5, 0.05)).empty());
+  const auto rear_faults = rear.update(joints(0.0, 0.0, -0.5, 0.05));
+  ASSERT_EQ(rear_faults.size(), 1u);
+  EXPECT_EQ(rear_faults[0], "rear joint blocked: it turned at 10 % of its command (0.50 rad/s) for 1.0 s");
+  // Both at once: both reported in the same cycle, the front first.
+  JointBlockedMonitor both({.time_s = 1.0});
+  for (int k = 1; k < 64; ++k) ASSERT_TRUE(both.update(joints(0.4, 0.0, 0.4, 0.0)).empty());
+  const auto both_faults = both.update(joints(0.4, 0.0, 0.4, 0.0));
+  ASSERT_EQ(both_faults.size(), 2u);
+  EXPECT_TRUE(both_faults[0].starts_with("front joint blocked")) << both_faults[0];
+  EXPECT_TRUE(both_faults[1].starts_with("rear joint blocked")) << both_faults[1];
+}
+
+TEST(JointBlockedMonitor, ABreakInTheStallStartsItAgain) {
+  JointBlockedMonitor m({.time_s = 1.0});
+  for (int k = 0; k < 50; ++k) m.update(joints(0.7, 0.0));
+  m.update(joints(0.7, 0.2));  // 29 % of the command: it moved
+  EXPECT_EQ(m.stalled_s()[0], 0.0);
+  for (int k = 1; k < 64; ++k) ASSERT_TRUE(m.update(joints(0.7, 0.0)).empty());
+  EXPECT_EQ(m.update(joints(0.7, 0.0)).size(), 1u);
+}
+
+TEST(JointBlockedMonitor, JointsThatTurnOrRestOrAreNotDrivenAreNotBlocked) {
+  JointBlockedMonitor m;
+  for (int k = 0; k < 640; ++k) {
+    ASSERT_TRUE(m.update(joints(1.41, 1.2, -1.41, -1.3)).empty());     // bending
+    ASSERT_TRUE(m.update(joints(0.15, 0.0, 0.1, 0.0)).empty());        // |ν| below ν_min: holding
+    ASSERT_TRUE(m.update(joints(0.7, 0.0, 0.7, 0.0, false)).empty());  // not driving
+  }
+  JointBlockedMonitor off({.time_s = 0.0});
+  for (int k = 0; k < 640; ++k) ASSERT_TRUE(off.update(joints(0.7, 0.0, 0.7, 0.0)).empty());
+}
+
+TEST(JointBlockedMonitor, BadLimitsAndInputsAreRejectedByName) {
+  EXPECT_THROW(JointBlockedMonitor({.time_s = -1.0}), std::invalid_argument);
+  EXPECT_THROW(JointBlockedMonitor({.turning_share = 1.0}), std::invalid_argument);
+  EXPECT_THROW(JointBlockedMonitor({.min_command_radps = 0.0}), std::invalid_argument);
+  JointBlockedMonitor m;
+  JointBlockedInput in = joints(0.7, 0.0);
+  in.no_load_radps[1] = NAN;
+  try {
+    m.update(in);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no_load_radps[1]"), std::string::npos) << e.what();
+  }
+  JointBlockedInput no_time = joints(0.7, 0.0);
+  no_time.period_s = 0.0;
+  EXPECT_THROW(m.update(no_time), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace marsokhod::estimation
