@@ -134,14 +134,14 @@ std::vector<std::string> JointBlockedMonitor::update(const JointBlockedInput& in
     }
     const bool before = stalled_s_[j] >= limits_.time_s;
     stalled_s_[j] += in.period_s;
-    turned_sum_[j] += turned;
-    command_sum_[j] += commanded;
+    turned_sum_[j] += turned * in.period_s;
+    command_sum_[j] += commanded * in.period_s;
     if (before || stalled_s_[j] < limits_.time_s) continue;
     char text[128];
     std::snprintf(text, sizeof text,
                   "%s joint blocked: it turned at %.0f %% of its command (%.2f rad/s) for %.1f s",
                   j == 0 ? "front" : "rear", 100.0 * turned_sum_[j] / command_sum_[j],
-                  command_sum_[j] * in.period_s / stalled_s_[j], stalled_s_[j]);
+                  command_sum_[j] / stalled_s_[j], stalled_s_[j]);
     faults.emplace_back(text);
   }
   return faults;

@@ -145,7 +145,8 @@ class JointBlockedMonitor {
  private:
   JointBlockedLimits limits_;
   std::array<double, 2> stalled_s_{};
-  std::array<double, 2> turned_sum_{};  // Σ|w| and Σ|ν| over each stall, for the fault's text
+  // ∫|w| dt and ∫|ν| dt over each stall, for the fault's text (the share, the mean command).
+  std::array<double, 2> turned_sum_{};
   std::array<double, 2> command_sum_{};
 };
 

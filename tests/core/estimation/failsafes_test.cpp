@@ -207,6 +207,19 @@ TEST(JointBlockedMonitor, AJointStalledUnderItsCommandIsAFaultAfterTheConfigured
   EXPECT_TRUE(both_faults[1].starts_with("rear joint blocked")) << both_faults[1];
 }
 
+TEST(JointBlockedMonitor, TheFaultsMeanCommandIsOverTimeNotCycles) {
+  // Half a second at 0.4 rad/s in 1/64-s cycles, then half a second at 0.8 in 1/32-s cycles:
+  // the mean over the second is 0.6 rad/s (over the 48 cycles it would be 0.53).
+  JointBlockedMonitor m({.time_s = 1.0});
+  for (int k = 0; k < 32; ++k) ASSERT_TRUE(m.update(joints(0.4, 0.0)).empty());
+  JointBlockedInput slow = joints(0.8, 0.0);
+  slow.period_s = 1.0 / 32.0;
+  for (int k = 1; k < 16; ++k) ASSERT_TRUE(m.update(slow).empty());
+  const auto faults = m.update(slow);
+  ASSERT_EQ(faults.size(), 1u);
+  EXPECT_EQ(faults[0], "front joint blocked: it turned at 0 % of its command (0.60 rad/s) for 1.0 s");
+}
+
 TEST(JointBlockedMonitor, ABreakInTheStallStartsItAgain) {
   JointBlockedMonitor m({.time_s = 1.0});
   for (int k = 0; k < 50; ++k) m.update(joints(0.7, 0.0));
