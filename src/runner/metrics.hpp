@@ -24,11 +24,12 @@
 // joint_blocked_faults (how often the driver latched that fault; a joint blocked: either joint's),
 // first_tip_over_s, first_stuck_s and first_joint_blocked_s (when it first did; −1: never),
 // max_joint_stall_s (the longest either joint stood stalled under its command, the driver's
-// joint_stalled_s: how near the joint-blocked failsafe came),
-// other_faults (like driver_faults, the most faults latched at once, not counting these three). The operator's missions (core/navigation/mission.hpp): missions_started,
-// missions_reached, missions_aborted (each mission once; a driver restart starts counting its
-// missions again from its own ids), mission_corrections (legs driven again, over the reached
-// missions), final_mission_progress (the last mission's progress at the end, 0..1).
+// joint_stalled_s: how near the joint-blocked failsafe came), other_faults (like driver_faults,
+// the most faults latched at once, not counting these three). The operator's missions
+// (core/navigation/mission.hpp): missions_started, missions_reached, missions_aborted (each
+// mission once; a driver restart starts counting its missions again from its own ids),
+// mission_corrections (legs driven again, over the reached missions), final_mission_progress (the
+// last mission's progress at the end, 0..1).
 // max_lateral_speed_mps: the largest sideways speed of the centre unit (ground truth, its
 // horizontal velocity along its left axis; Field Experiment 5.2); max_lateral_drift_mps: the
 // largest sideways travel over any second, per second, each step along the heading it had
@@ -143,8 +144,8 @@ class Metrics {
   double first_tip_over_s_ = -1.0, first_stuck_s_ = -1.0, first_joint_blocked_s_ = -1.0;
   double other_faults_ = 0.0;
   bool tip_over_latched_ = false, stuck_latched_ = false;
-  std::size_t joints_blocked_ = 0;
-  double max_joint_stall_s_ = 0.0;  // "front/rear joint blocked" faults latched the cycle before
+  std::size_t joints_blocked_ = 0;  // "front/rear joint blocked" faults latched the cycle before
+  double max_joint_stall_s_ = 0.0;
   // Missions (core/navigation): counted as the driver's status shows them.
   std::uint64_t last_mission_id_ = 0;
   navigation::MissionState last_mission_state_ = navigation::MissionState::kIdle;
