@@ -140,7 +140,6 @@ class JointBlockedMonitor {
 
   // How long each joint (front, rear) has been stalled without a break [s].
   const std::array<double, 2>& stalled_s() const { return stalled_s_; }
-  void reset() { stalled_s_ = {}; turned_sum_ = {}; command_sum_ = {}; }
 
  private:
   JointBlockedLimits limits_;
