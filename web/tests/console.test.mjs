@@ -434,7 +434,11 @@ test('the configuration panel shows the settings in force, and follows a change'
 test('STOP (button or space bar) stops the rover while the stick is still pushed', async () => {
   const page = pages[1];
   for (const how of ['button', 'space']) {
+    // Centred, and seen centred: the console samples the pad at 20 Hz, and after the first STOP
+    // only a sample of the centred stick re-arms it. Pushing the stick again before one was taken
+    // (a busy machine delays the timer) would leave it latched and sending neutral.
     await setPad(page, { axes: CENTERED });
+    await page.waitForFunction(() => !/STOPPED/.test(document.getElementById('send-state').textContent), null, { timeout: 2000 });
     await waitForStatus(page, 'the console sends again', (s) => s.operator_timeout === false, null, 2000);
     await driveForward(page);
     if (how === 'button') await page.click('#stop');
