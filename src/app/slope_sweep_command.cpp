@@ -27,7 +27,7 @@ CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args) {
   CLI::App* cmd = cli.add_subcommand(
       "slope-sweep",
       "the steepest soft-soil slope the simulated rover climbs by driving and by each gait");
-  cmd->add_option("--ground", args.ground, "a soft soil: soft-sand (default) or lunar-soil");
+  cmd->add_option("--ground", args.ground, "a soft soil: sand (default) or lunar-soil");
   cmd->add_option("--distance", args.distance_m,
                   "metres along the slope that count as climbed (default 0.1)")
       ->check(finite_range(0.001, 100.0));
@@ -45,7 +45,7 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
   const std::optional<sim::Material> ground = sim::material_named(args.ground);
   if (!ground || !ground->soil) {
     err << "marsokhod slope-sweep: --ground " << args.ground
-        << " is not a soft soil; use soft-sand or lunar-soil\n";
+        << " is not a soft soil; use sand or lunar-soil\n";
     return kUsageError;
   }
   if (args.drive_radps > config.params.operator_input.max_drive_speed_radps) {

@@ -16,7 +16,7 @@ class App;
 namespace marsokhod::app {
 
 struct SlopeSweepArgs {
-  std::string ground = "soft-sand";
+  std::string ground = "sand";
   std::uint64_t seed = 1;
   double distance_m = 0.1;
   double time_s = 40.0;

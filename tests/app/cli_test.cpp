@@ -118,7 +118,7 @@ TEST(Cli, ANaNInAScenarioIsAOneLineUsageError) {
 TEST(Cli, SlopeSweepRefusesRigidGroundAndBadNumbers) {
   Result r = cli({"--config", kConfig.c_str(), "slope-sweep", "--ground", "hard"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("--ground hard is not a soft soil; use soft-sand or lunar-soil"),
+  EXPECT_NE(r.err.find("--ground hard is not a soft soil; use sand or lunar-soil"),
             std::string::npos)
       << r.err;
   r = cli({"--config", kConfig.c_str(), "slope-sweep", "--drive", "3.0"});
@@ -220,11 +220,11 @@ TEST_F(CliCalibrate, BadArgumentsAreOneLineUsageErrors) {
   EXPECT_EQ(r.status, 2);
   r = cli({"--config", kConfig.c_str(), "calibrate", "spin", "--sim", "--ground", "mud"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("--ground mud is unknown; use hard, sand, grass, soft-sand or lunar-soil"),
+  EXPECT_NE(r.err.find("--ground mud is unknown; use hard, sand, rigid-sand, grass or lunar-soil"),
             std::string::npos)
       << r.err;
   r = cli({"--config", kConfig.c_str(), "calibrate", "spin", "--can", "socketcan:can0",
-           "--ground", "soft-sand"});
+           "--ground", "sand"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--ground is for the simulated rover (--sim) only"), std::string::npos)
       << r.err;

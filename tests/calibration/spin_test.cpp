@@ -127,7 +127,7 @@ TEST(SpinCalibration, ThePeakFromTheGyroIsTheTruePeakAndTheSweepIsDeterministic)
   EXPECT_EQ(points[0].tau, points[1].tau);
 }
 
-// Procedure 5.1 on the soft sand of sim/soil (Wong's dry sand, `--ground soft-sand`): the rover
+// Procedure 5.1 on the soft sand of sim/soil (Wong's dry sand, `--ground sand`): the rover
 // turns at first about as on hard ground — the turning rate peaks early in the sweep (τ ≈ 0.2–0.4)
 // with the exterior wheels at about the center ones' speed — but it does not keep turning as the
 // exterior wheels speed up: each wheel's thrust saturates near 0.24 of its load
@@ -166,7 +166,7 @@ TEST(SpinCalibration, OnSoftSandTheSpinDigsInAndStopsTurning) {
     return Spin{late / static_cast<double>(rate.size() - from), before - mean_wheel_z()};
   };
   const Spin hard = spin_on(sim::hard_ground());
-  const Spin soft = spin_on(sim::soft_sand());
+  const Spin soft = spin_on(sim::sand());
   EXPECT_GT(hard.late_turn_rate_radps, 0.08);
   EXPECT_LT(soft.late_turn_rate_radps, 0.75 * hard.late_turn_rate_radps);  // seed 6: 0.08, 0.16
   EXPECT_LT(std::abs(hard.wheels_sank_m), 0.005);
@@ -188,7 +188,7 @@ TEST(SpinCalibration, OnSoftSandTheExteriorWheelsRunAheadAtThePeakWithOrWithoutB
     Params params = config();
     params.geometry.blade_inclination_rad = inclination;
     sim::SimOptions options = battery(1);
-    options.terrain.ground = sim::soft_sand();
+    options.terrain.ground = sim::sand();
     SimBench bench(params, options);
     bench.start(params.cycle.icr, params.cycle.con);
     bench.arrange(BenchSetup{});

@@ -232,7 +232,7 @@ TEST(StatusJson, SoilPatchIsClippedToTheGrid) {
 TEST(StatusJson, TruthCarriesTheSoilOnlyOnSoftSoilAndWhenAsked) {
   const Params params;
   sim::SimOptions soft;
-  soft.terrain.ground = sim::soft_sand();
+  soft.terrain.ground = sim::sand();
   const sim::SimulatedRover on_sand(params, soft);
   EXPECT_FALSE(truth_json(on_sand).contains("soil"));
   const nlohmann::json truth = truth_json(on_sand, std::nullopt, true);

@@ -154,7 +154,7 @@ Scenario without_the_slab(const std::string& name) {
 
 Scenario on_loose_sand(const std::string& name) {
   Scenario scenario = without_the_slab(name);
-  scenario.sim.terrain.ground = sim::sand();
+  scenario.sim.terrain.ground = sim::rigid_sand();
   return scenario;
 }
 
@@ -173,7 +173,7 @@ TEST(ShippedScenarios, LoadDistributionAdvancesQuickerAndErodesLessOnLooseSand) 
 }
 
 // Chapter 6.3 on soft soil (sim/soil's Wong–Reece wheels on the deformable grid): the same climb
-// as above, the 12° slope without the slab, on `soft-sand`. The erosion is the soil the run
+// as above, the 12° slope without the slab, on the soil model's `sand`. The erosion is the soil the run
 // disturbed (soil_disturbed_m3: the earthwork's cut + fill) per metre the rover climbed. On seeds
 // 1–20 (RELIABILITY.md) h^v and h^s each climb further than no redistribution (20 of 20) and
 // disturb less soil per metre climbed (20 of 20: 0.58–0.87 and 0.71–0.89 of it); neither the
@@ -185,7 +185,7 @@ double disturbed_per_metre_climbed(const ScenarioResult& r) {
 
 Scenario on_soft_sand(const std::string& name) {
   Scenario scenario = without_the_slab(name);
-  scenario.sim.terrain.ground = sim::soft_sand();
+  scenario.sim.terrain.ground = sim::sand();
   return scenario;
 }
 
@@ -208,7 +208,7 @@ TEST(ShippedScenarios, OnSoftSandLoadDistributionClimbsFurtherAndErodesLessPerMe
   }
 }
 
-// Driving against rolking (chapter 5.3) up the same 12° soft-sand slope for 27 s, v1 = 1 rad/s
+// Driving against rolking (chapter 5.3) up the same 12° slope of soft sand for 27 s, v1 = 1 rad/s
 // against rolking at full gait speed. On seeds 1–20 driving climbs further (20 of 20: 0.39–0.48 m
 // against 0.02–0.10 m) and disturbs less soil per metre climbed (20 of 20), though more in all
 // (20 of 20: its six wheels slip through the sand the whole time, rolking's mostly stand); so the
@@ -221,7 +221,7 @@ duration_s = 30.0
 [terrain]
 kind = "slope"
 slope_deg = 12.0
-material = "soft-sand"
+material = "sand"
 [sim]
 supply = "battery"
 [[input]]

@@ -83,7 +83,7 @@ TEST(ScenarioRunner, APhysicsStepOfItsOwnReachesTheSimulator) {
 TEST(ScenarioRunner, OnSoftSoilReportsTheGridsMetrics) {
   std::string text = kShortDrive;
   text.replace(text.find("[sim]"), 5,
-               "[terrain]\nkind = \"flat\"\nmaterial = \"soft-sand\"\n[sim]");
+               "[terrain]\nkind = \"flat\"\nmaterial = \"sand\"\n[sim]");
   const ScenarioResult r = run(text);
   for (const std::string& name : soil_metric_names()) {
     ASSERT_TRUE(r.metrics.contains(name)) << name;

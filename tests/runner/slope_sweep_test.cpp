@@ -50,7 +50,7 @@ TEST(SlopeSweep, BisectionFindsTheLastGridAngleClimbed) {
 TEST(SlopeSweep, ASmallSweepOfDrivingOnSoftSandIsConfirmedByDirectClimbs) {
   const Params params = testing::shipped_params();
   ClimbSpec spec;
-  spec.ground = sim::soft_sand();
+  spec.ground = sim::sand();
   spec.time_s = 8.0;
   spec.distance_m = 0.05;
   const auto climbs = [&](double deg) {

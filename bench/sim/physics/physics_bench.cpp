@@ -20,8 +20,8 @@ constexpr double kTimestepS = 0.001;
 
 TerrainSpec terrain_for(int kind) {
   TerrainSpec terrain;
-  if (kind == 1) terrain.ground = sand();
-  if (kind == 3) terrain.ground = soft_sand();
+  if (kind == 1) terrain.ground = rigid_sand();
+  if (kind == 3) terrain.ground = sand();
   if (kind == 2) {
     // Gentle dunes on a 64 × 64 grid over 8 m × 8 m, up to 0.2 m.
     terrain.kind = TerrainKind::kHeightfield;

@@ -124,8 +124,9 @@ Material material_from(const toml::node* node, TableReader& owner, const Materia
     if (const std::optional<Material> named = material_named(*name)) return *named;
     owner.fail("material",
                "= \"" + *name +
-                   "\" is unknown; use \"hard\", \"sand\", \"grass\", \"soft-sand\", \"lunar-soil\" or a table "
-                   "{ friction = …, rolling_friction_m = … }",
+                   "\" is unknown; use \"hard\", \"sand\", \"rigid-sand\", \"grass\", "
+                   "\"lunar-soil\" or a table { friction = …, rolling_friction_m = … }" +
+                   (*name == "soft-sand" ? " (\"soft-sand\" is now called \"sand\")" : ""),
                node);
   }
   const toml::table* table = node->as_table();
@@ -250,11 +251,11 @@ void validate_heightfield(const Heightfield& field) {
 
 Material hard_ground() { return Material{0.9, 0.0, 0.0, 0.0}; }
 
-Material sand() { return Material{0.5, 0.0, 0.02, 2.0}; }
+Material rigid_sand() { return Material{0.5, 0.0, 0.02, 2.0}; }
 
 Material grass() { return Material{1.2, 0.0, 0.01, 0.0}; }
 
-Material soft_sand() {
+Material sand() {
   Material material{0.5, 0.0, 0.0, 0.0};
   material.soil = soil::dry_sand();
   return material;
@@ -264,7 +265,7 @@ std::optional<Material> material_named(std::string_view name) {
   if (name == "hard") return hard_ground();
   if (name == "grass") return grass();
   if (name == "sand") return sand();
-  if (name == "soft-sand") return soft_sand();
+  if (name == "rigid-sand") return rigid_sand();
   if (name == "lunar-soil") return soft_lunar_soil();
   return std::nullopt;
 }
@@ -305,7 +306,8 @@ void validate(const TerrainSpec& terrain) {
   if (terrain.kind == TerrainKind::kHeightfield) validate_heightfield(terrain.heightfield);
   if (terrain.ground.soil) {
     require(terrain.kind != TerrainKind::kHeightfield,
-            "soft soil (soft-sand, lunar-soil) needs flat or sloped ground, not a heightfield");
+            "soft soil (sand, lunar-soil) needs flat or sloped ground, not a heightfield (use "
+            "rigid-sand there)");
     soil::validate(*terrain.ground.soil);
   }
 }

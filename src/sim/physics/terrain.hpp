@@ -50,26 +50,27 @@ struct Material {
 // Hard ground (carpet-covered wheels on a lab floor, packed soil, rock): μ ≈ 0.9, no rolling loss,
 // no sinkage.
 Material hard_ground();
-// Loose sand: μ = 0.5, a rolling resistance C_rr ≈ 0.16 (0.02 m on the 0.125 m wheel) and a skid
-// sinkage of 2: a rigid wheel dragged through it ploughs with 2.5 times its load, so that with a
-// rigid front wheel "driving forward was barely possible" (Field Experiment 6.2).
-Material sand();
+// Rigid sand: the MuJoCo contact sand had before the soil model (sim/soil), kept for the
+// scenarios whose checks have not yet moved to the soil (docs/simulator.md says which and why):
+// μ = 0.5, a rolling resistance C_rr ≈ 0.16 (0.02 m on the 0.125 m wheel) and a skid sinkage of
+// 2, so that a rigid wheel dragged through it ploughs with 2.5 times its load.
+Material rigid_sand();
 // Grass (Field Experiment 5.6, the unmown meadow: "Turning the robot on grass was stressful; the
 // blades of the wheels were retained by the stems", while the rolking modes "were tested
 // successfully"): μ = 1.2, a third above hard ground, for a bladed wheel dragged across the turf
 // shears or bends the stems caught between its blades on top of the rim's Coulomb friction; a
 // rolling wheel lifts its blades out of the stems and meets only a rolling resistance
 // C_rr = 0.08 (0.01 m on the 0.125 m wheel: a rigid wheel on a meadow, between a lawn's 0.05 and
-// sand's 0.16); no skid sinkage (the root mat carries the wheel, nothing is ploughed). Skid
+// rigid sand's 0.16); no skid sinkage (the root mat carries the wheel, nothing is ploughed). Skid
 // steering turns by dragging the exterior wheels sideways, so a spin meets μ·N at every wheel
 // that slides (a third more torque, a third more power), while driving straight rolls.
 Material grass();
-// Soft soils: Wong's dry sand and the lunar soil of sim/soil (soil_params.hpp) under the wheels,
-// μ = 0.5 for the chassis.
-Material soft_sand();
+// Soft soils, the soil model of sim/soil under the wheels (soil_params.hpp), μ = 0.5 for the
+// chassis: sand is Wong's dry sand; the lunar soil is Ding et al.'s.
+Material sand();
 Material soft_lunar_soil();
-// The material of a terrain file's name: "hard", "sand", "grass", "soft-sand" or "lunar-soil"; nullopt
-// for another name.
+// The material of a terrain file's name: "hard", "sand", "rigid-sand", "grass" or "lunar-soil";
+// nullopt for another name.
 std::optional<Material> material_named(std::string_view name);
 
 enum class TerrainKind { kFlat, kSlope, kObstacles, kHeightfield };
@@ -119,7 +120,7 @@ void validate(const TerrainSpec& terrain);
 // is allowed. The keys (angles in degrees, lengths in metres):
 //
 //   kind = "flat" | "slope" | "obstacles" | "heightfield"
-//   material = "hard" | "sand" | "grass" | "soft-sand" | "lunar-soil"
+//   material = "hard" | "sand" | "rigid-sand" | "grass" | "lunar-soil"
 //            | { friction = 0.7, torsional_friction_m = 0.0,
 //                                  rolling_friction_m = 0.01,
 //                                  skid_sinkage = 0.0 }                  # optional, "hard"

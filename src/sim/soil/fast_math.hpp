@@ -1,5 +1,5 @@
 // Inline exponentials, sines and cosines for the soil's hot loops, where glibc's calls (errno
-// wrapper and dispatch included) took a quarter of the soft-sand step.
+// wrapper and dispatch included) took a quarter of the soft soil's step.
 //
 // exp_nonpositive: e^x for x ≤ 0 — per arc sample the blades' two mobilised shares
 // 1 − e^(−|j|/K) and Bekker's power as e^(n ln x), 1300 exponentials a step for six wheels.

@@ -182,7 +182,7 @@ TEST(RoverPhysics, IdleJointsHoldUnderLoad) {
 // limited to 0.5 N·m, crosses the gap, bears on the joint and stalls.
 TEST(RoverPhysics, AWeakMotorStallsButIsNeverBackDriven) {
   TerrainSpec terrain;
-  terrain.ground = sand();
+  terrain.ground = rigid_sand();
   RoverPhysics physics(Params{}, terrain);
   physics.set_drive(drive_at({}));
   run(physics, 300);
@@ -257,7 +257,7 @@ TEST(RoverPhysics, ABlockedWheelStallsItsMotor) {
 TEST(RoverPhysics, ARigidWheelPloughsThroughSandARollingOneDoesNot) {
   const auto driven_m = [](double sinkage) {
     TerrainSpec terrain;
-    terrain.ground = sand();
+    terrain.ground = rigid_sand();
     terrain.ground.skid_sinkage = sinkage;
     RoverPhysics physics(Params{}, terrain);
     run(physics, 300);
@@ -267,12 +267,12 @@ TEST(RoverPhysics, ARigidWheelPloughsThroughSandARollingOneDoesNot) {
     expect_healthy(physics);
     return physics.truth().position_m[0] - start;
   };
-  const double rolling = driven_m(sand().skid_sinkage);
+  const double rolling = driven_m(rigid_sand().skid_sinkage);
   EXPECT_GT(rolling, 0.3);
   EXPECT_NEAR(rolling, driven_m(0.0), 0.01 * rolling);
   const auto sliding_mps = [](double sinkage) {
     TerrainSpec terrain = testing::slope_deg(30.0);
-    terrain.ground = sand();
+    terrain.ground = rigid_sand();
     terrain.ground.skid_sinkage = sinkage;
     RoverPhysics physics(Params{}, terrain);
     for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
@@ -283,7 +283,7 @@ TEST(RoverPhysics, ARigidWheelPloughsThroughSandARollingOneDoesNot) {
     return std::hypot(physics.truth().velocity_mps[0], physics.truth().velocity_mps[2]);
   };
   EXPECT_GT(sliding_mps(0.0), 0.5);
-  EXPECT_LT(sliding_mps(sand().skid_sinkage), 0.01);
+  EXPECT_LT(sliding_mps(rigid_sand().skid_sinkage), 0.01);
 }
 
 TEST(RoverPhysics, AWheelWithoutContactSpinsFree) {
@@ -325,7 +325,7 @@ TEST(RoverPhysics, SetDownFromTheStandWithBentJointsEveryWheelClearsTheGround) {
   for (const bool soft : {false, true}) {
     SCOPED_TRACE(soft ? "soft sand" : "hard ground");
     TerrainSpec terrain;
-    if (soft) terrain.ground = soft_sand();
+    if (soft) terrain.ground = sand();
     RoverPhysics physics(Params{}, terrain);
     physics.place_on_stand(0.0, 0.0);
     MotorVector bend{};

@@ -24,7 +24,7 @@ using testing::slope_deg;
 
 TerrainSpec soft_flat() {
   TerrainSpec terrain;
-  terrain.ground = soft_sand();
+  terrain.ground = sand();
   return terrain;
 }
 
@@ -94,13 +94,13 @@ TEST(RoverSoftSoil, DrivesForwardWithSlip) {
   EXPECT_LT(std::abs(soft_lateral), 0.01);  // the blades' sideways pushes balance
 }
 
-// Up a soft-sand slope, driving all wheels at 2 rad/s: a wheel's drawbar pull reaches at most
+// Up a slope of soft sand, driving all wheels at 2 rad/s: a wheel's drawbar pull reaches at most
 // 0.24 of its load (wheel_stress_test), a 13.5° climb; the rover still gains ground on 10° and
 // slides back on 25°, below sand's 28° angle of repose.
 TEST(RoverSoftSoil, ClimbsTenDegreesButNotTwentyFive) {
   const auto advanced_m = [](double slope_deg) {
     TerrainSpec terrain = testing::slope_deg(slope_deg);
-    terrain.ground = soft_sand();
+    terrain.ground = sand();
     RoverPhysics physics(Params{}, terrain);
     run(physics, 500);
     const double start = physics.truth().position_m[0];
@@ -167,7 +167,7 @@ TEST(RoverSoftSoil, TheHeightFieldFollowsTheRuts) {
   for (const double slope : {0.0, 10.0}) {
     SCOPED_TRACE(slope);
     TerrainSpec terrain = slope == 0.0 ? soft_flat() : slope_deg(slope);
-    terrain.ground = soft_sand();
+    terrain.ground = sand();
     RoverPhysics physics(Params{}, terrain);
     run(physics, 500);
     physics.set_drive(drive_at(all_wheels(2.0)));
@@ -302,7 +302,7 @@ TEST(RoverSoftSoil, TwoRunsAreBitIdentical) {
 TEST(RoverSoftSoil, SoftSoilNeedsFlatOrSlopedGround) {
   TerrainSpec terrain;
   terrain.kind = TerrainKind::kHeightfield;
-  terrain.ground = soft_sand();
+  terrain.ground = sand();
   terrain.heightfield.image.width = 2;
   terrain.heightfield.image.height = 2;
   terrain.heightfield.image.values = {0.0, 0.0, 0.0, 0.0};

@@ -115,7 +115,7 @@ TEST(RoverTruth, SandTakesMoreTorqueThanHardGround) {
     return sum_nm;
   };
   const double hard_nm = cruise_torque(hard_ground());
-  const double sand_nm = cruise_torque(sand());
+  const double sand_nm = cruise_torque(rigid_sand());
   EXPECT_NEAR(hard_nm, 0.0, 0.5);
   // C_rr·r·m·g = 0.02 m · 82 kg · 9.81 m/s² ≈ 16 N·m over six wheels.
   EXPECT_NEAR(sand_nm, 0.02 * 82.0 * kGravity, 4.0);

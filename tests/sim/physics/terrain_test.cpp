@@ -27,13 +27,13 @@ void expect_error(const std::string& text, const std::string& key, const std::st
   test_support::expect_invalid_argument([&] { read(text); }, {key, what});
 }
 
-TEST(TerrainMaterials, SandIsSlipperierAndResistsRolling) {
+TEST(TerrainMaterials, RigidSandIsSlipperierAndResistsRolling) {
   EXPECT_DOUBLE_EQ(hard_ground().sliding_friction, 0.9);
   EXPECT_DOUBLE_EQ(hard_ground().rolling_friction_m, 0.0);
-  EXPECT_LT(sand().sliding_friction, hard_ground().sliding_friction);
-  EXPECT_GT(sand().rolling_friction_m, 0.0);
+  EXPECT_LT(rigid_sand().sliding_friction, hard_ground().sliding_friction);
+  EXPECT_GT(rigid_sand().rolling_friction_m, 0.0);
   EXPECT_DOUBLE_EQ(hard_ground().skid_sinkage, 0.0);  // only loose ground lets a wheel dig in
-  EXPECT_GT(sand().skid_sinkage, 0.0);
+  EXPECT_GT(rigid_sand().skid_sinkage, 0.0);
 }
 
 TEST(TerrainFromToml, FlatHardGroundByDefault) {
@@ -44,9 +44,10 @@ TEST(TerrainFromToml, FlatHardGroundByDefault) {
 }
 
 TEST(TerrainFromToml, NamedAndCustomMaterials) {
-  EXPECT_DOUBLE_EQ(
-      read("[terrain]\nkind = \"flat\"\nmaterial = \"sand\"\n").ground.sliding_friction,
-      sand().sliding_friction);
+  const TerrainSpec rigid = read("[terrain]\nkind = \"flat\"\nmaterial = \"rigid-sand\"\n");
+  EXPECT_DOUBLE_EQ(rigid.ground.sliding_friction, rigid_sand().sliding_friction);
+  EXPECT_DOUBLE_EQ(rigid.ground.skid_sinkage, rigid_sand().skid_sinkage);
+  EXPECT_FALSE(rigid.ground.soil.has_value());  // rigid sand is MuJoCo's contact
   const TerrainSpec custom = read(
       "[terrain]\nkind = \"flat\"\nmaterial = { friction = 0.7, rolling_friction_m = 0.01 }\n");
   EXPECT_DOUBLE_EQ(custom.ground.sliding_friction, 0.7);
@@ -56,9 +57,9 @@ TEST(TerrainFromToml, NamedAndCustomMaterials) {
   const TerrainSpec sinking =
       read("[terrain]\nkind = \"flat\"\nmaterial = { friction = 0.5, skid_sinkage = 1.5 }\n");
   EXPECT_DOUBLE_EQ(sinking.ground.skid_sinkage, 1.5);
-  EXPECT_FALSE(sand().soil.has_value());  // sand stays MuJoCo's rigid contact
+  EXPECT_TRUE(sand().soil.has_value());  // sand is the soil model's
   // Grass (Field Experiment 5.6): a third more sliding friction than hard ground, a rolling
-  // resistance C_rr = 0.01 m / 0.125 m = 0.08 (between a lawn's 0.05 and sand's 0.16), no ploughing.
+  // resistance C_rr = 0.01 m / 0.125 m = 0.08 (between a lawn's 0.05 and rigid sand's 0.16), no ploughing.
   const TerrainSpec meadow = read("[terrain]\nkind = \"flat\"\nmaterial = \"grass\"\n");
   EXPECT_DOUBLE_EQ(meadow.ground.sliding_friction / hard_ground().sliding_friction, 4.0 / 3.0);
   EXPECT_DOUBLE_EQ(meadow.ground.rolling_friction_m / 0.125, 0.08);
@@ -68,7 +69,7 @@ TEST(TerrainFromToml, NamedAndCustomMaterials) {
 
 // Soft soils put sim/soil under the wheels: Wong's dry sand and the lunar soil.
 TEST(TerrainFromToml, SoftSoils) {
-  const TerrainSpec sand_terrain = read("[terrain]\nkind = \"slope\"\nslope_deg = 10\nmaterial = \"soft-sand\"\n");
+  const TerrainSpec sand_terrain = read("[terrain]\nkind = \"slope\"\nslope_deg = 10\nmaterial = \"sand\"\n");
   ASSERT_TRUE(sand_terrain.ground.soil.has_value());
   EXPECT_EQ(sand_terrain.ground.soil->name, "sand");
   EXPECT_DOUBLE_EQ(sand_terrain.ground.soil->frictional_modulus, 1528.43e3);
@@ -78,12 +79,12 @@ TEST(TerrainFromToml, SoftSoils) {
   EXPECT_EQ(lunar.ground.soil->name, "lunar soil");
   TerrainSpec field;
   field.kind = TerrainKind::kHeightfield;
-  field.ground = soft_sand();
+  field.ground = sand();
   field.heightfield.image.width = 2;
   field.heightfield.image.height = 2;
   field.heightfield.image.values = {0.0, 0.0, 0.0, 0.0};
   test_support::expect_invalid_argument([&] { validate(field); },
-                                        {"soft soil", "not a heightfield"});
+                                        {"soft soil", "not a heightfield", "rigid-sand"});
 }
 
 TEST(TerrainFromToml, SlopeInDegrees) {
@@ -134,7 +135,7 @@ TEST(TerrainFromToml, HeightfieldImageRelativeToTheScenario) {
   const TerrainSpec terrain = read(R"(
 [terrain]
 kind = "heightfield"
-material = "sand"
+material = "rigid-sand"
 image = "dune.pgm"
 size_m = [6.0, 4.0]
 max_height_m = 0.3
@@ -159,7 +160,10 @@ TEST(TerrainFromToml, ErrorsNameTheKey) {
   expect_error("[terrain]\nkind = \"slope\"\nslope_deg = \"steep\"\n", "terrain.slope_deg",
                "number");
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material", "unknown");
-  expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material", "\"soft-sand\"");
+  expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material", "\"rigid-sand\"");
+  // The soil model's sand was called "soft-sand" until it became the sand.
+  expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"soft-sand\"\n", "terrain.material",
+               "\"soft-sand\" is now called \"sand\"");
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = { friction = -1 }\n",
                "terrain.material.friction", "outside");
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = { friction = 1, roll = 1 }\n",
