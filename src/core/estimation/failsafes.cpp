@@ -100,8 +100,8 @@ std::optional<std::string> StuckMonitor::update(const StuckInput& in) {
   }
   const bool before = stalled_s_ >= limits_.time_s;
   stalled_s_ += in.period_s;
-  turned_sum_ += turned;
-  command_sum_ += commanded;
+  turned_sum_ += turned * in.period_s;  // weighted by time: a cycle's period may change
+  command_sum_ += commanded * in.period_s;
   if (before || stalled_s_ < limits_.time_s) return std::nullopt;
   char text[128];
   std::snprintf(text, sizeof text, "stuck: the centre wheels turned at %.0f %% of their command for %.1f s",

@@ -106,12 +106,11 @@ class StuckMonitor {
 
   // How long the wheels have been stalled without a break [s].
   double stalled_s() const { return stalled_s_; }
-  void reset() { stalled_s_ = 0.0; }
 
  private:
   StuckLimits limits_;
   double stalled_s_ = 0.0;
-  double turned_sum_ = 0.0;   // Σ|w| and Σ|ν| over the stall, for the fault's text
+  double turned_sum_ = 0.0;   // ∫Σ|w| dt and ∫Σ|ν| dt over the stall, for the fault's text
   double command_sum_ = 0.0;
 };
 

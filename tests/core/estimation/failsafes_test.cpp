@@ -127,6 +127,19 @@ TEST(StuckMonitor, StalledWheelsAreAFaultAfterTheConfiguredTime) {
   EXPECT_FALSE(m.update(stalled).has_value());  // reported once
 }
 
+TEST(StuckMonitor, TheFaultsShareIsOverTimeNotCycles) {
+  // Half a second at 10 % of the command in 1/64-s cycles, then half a second at 0 % in 1/32-s
+  // cycles: over the second the wheels turned at 5 % (over the 48 cycles it would be 7 %).
+  StuckMonitor m({.time_s = 1.0});
+  for (int k = 0; k < 32; ++k) ASSERT_FALSE(m.update(wheels(0.5, 0.05)).has_value());
+  StuckInput slow = wheels(0.5, 0.0);
+  slow.period_s = 1.0 / 32.0;
+  for (int k = 1; k < 16; ++k) ASSERT_FALSE(m.update(slow).has_value());
+  const auto fault = m.update(slow);
+  ASSERT_TRUE(fault.has_value());
+  EXPECT_EQ(*fault, "stuck: the centre wheels turned at 5 % of their command for 1.0 s");
+}
+
 TEST(StuckMonitor, ABreakInTheStallStartsItAgain) {
   StuckMonitor m({.time_s = 3.0});
   for (int k = 0; k < 150; ++k) m.update(wheels(0.47, 0.0));
