@@ -33,6 +33,11 @@ CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args) {
       ->check(finite_range(0.001, 100.0));
   cmd->add_option("--time", args.time_s, "seconds of driving or walking a climb gets (default 40)")
       ->check(finite_range(1.0, 3600.0));
+  cmd->add_option("--window", args.window_s,
+                  "judge the climb at its end: the mean position along the slope over the last W "
+                  "seconds must lie --distance ahead of the mean over the W before (default 0: "
+                  "the advance over the whole climb)")
+      ->check(finite_range(0.0, 1800.0));
   cmd->add_option("--step", args.step_deg, "the angles' resolution in degrees (default 0.5)")
       ->check(finite_range(0.1, 10.0));
   cmd->add_option("--drive", args.drive_radps, "v1 when driving, rad/s (default 1.0)")
@@ -48,6 +53,11 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
         << " is not a soft soil; use sand or lunar-soil\n";
     return kUsageError;
   }
+  if (2.0 * args.window_s > args.time_s) {
+    err << "marsokhod slope-sweep: --window " << args.window_s << " is longer than half of --time "
+        << args.time_s << " (the two windows it compares must fit into the climb)\n";
+    return kUsageError;
+  }
   if (args.drive_radps > config.params.operator_input.max_drive_speed_radps) {
     err << "marsokhod slope-sweep: --drive " << args.drive_radps << " exceeds max_drive_speed_radps "
         << config.params.operator_input.max_drive_speed_radps << "\n";
@@ -60,12 +70,23 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
   spec.time_s = args.time_s;
   spec.distance_m = args.distance_m;
   spec.seed = args.seed;
-  char line[256];
+  spec.window_s = args.window_s;
+  char line[320];
+  char criterion[160];
+  if (args.window_s > 0.0) {
+    std::snprintf(criterion, sizeof criterion,
+                  "still %.2f m along the slope between the mean positions of the last two %.0f-s "
+                  "windows of %.0f s",
+                  args.distance_m, args.window_s, args.time_s);
+  } else {
+    std::snprintf(criterion, sizeof criterion, "%.2f m along the slope in %.0f s", args.distance_m,
+                  args.time_s);
+  }
   std::snprintf(line, sizeof line,
-                "slope sweep on %s (angle of repose %.1f°), unit %llu: climbed = %.2f m along the "
-                "slope in %.0f s (driving at v1 = %.2f rad/s, gaits at full speed), %.1f° steps\n",
+                "slope sweep on %s (angle of repose %.1f°), unit %llu: climbed = %s (driving at "
+                "v1 = %.2f rad/s, gaits at full speed), %.1f° steps\n",
                 args.ground.c_str(), repose_deg, static_cast<unsigned long long>(args.seed),
-                args.distance_m, args.time_s, args.drive_radps, args.step_deg);
+                criterion, args.drive_radps, args.step_deg);
   out << line << "| mode | steepest climbed | [KG92] | angles tried (° climbed/failed, advance) |\n"
       << "|---|---|---|---|\n";
   std::optional<double> driving_deg, best_gait_deg;

@@ -1,5 +1,5 @@
-// `marsokhod slope-sweep [--ground NAME] [--seed S] [--distance M] [--time S] [--step DEG]
-// [--drive V1]`: the steepest slope of a soft soil the simulated rover climbs by driving and by
+// `marsokhod slope-sweep [--ground NAME] [--seed S] [--distance M] [--time S] [--window W]
+// [--step DEG] [--drive V1]`: the steepest slope of a soft soil the simulated rover climbs by driving and by
 // each gait (runner/slope_sweep.hpp), printed as a table beside [KG92]'s figures.
 #pragma once
 
@@ -20,6 +20,7 @@ struct SlopeSweepArgs {
   std::uint64_t seed = 1;
   double distance_m = 0.1;
   double time_s = 40.0;
+  double window_s = 0.0;  // 0: the advance over the whole climb; > 0: what it still gains at the end
   double step_deg = 0.5;
   double drive_radps = 1.0;
 };

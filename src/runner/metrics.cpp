@@ -50,7 +50,8 @@ const std::vector<std::string>& phase_metric_names() {
       "max_voltage_drop_v", "final_front_joint_rad", "final_rear_joint_rad",
       "final_joint_error_rad", "max_joint_error_rad", "max_joint_bound_excess_rad",
       "final_front_clearance_m", "final_rear_clearance_m", "min_front_joint_rad", "max_front_joint_rad", "min_rear_joint_rad", "max_rear_joint_rad",
-      "gait_state_changes", "max_lateral_speed_mps", "max_lateral_drift_mps", "front_axle_forward_m", "rear_axle_forward_m"};
+      "gait_state_changes", "max_lateral_speed_mps", "max_lateral_drift_mps", "front_axle_forward_m", "rear_axle_forward_m",
+      "mean_forward_m"};
   return names;
 }
 
@@ -104,14 +105,21 @@ Metrics::Snapshot Metrics::snapshot(const Session& session, double time_s) const
   return s;
 }
 
-void Metrics::observe_phases(const Session& session, double time_s,
+void Metrics::observe_phases(const Session& session, double time_s, double forward_m,
                              std::optional<double> voltage_drop_v, double joint_error_rad,
                              double bound_excess_rad, const std::array<double, 2>& joint_rad,
                              double lateral_speed_mps,
                              std::optional<double> lateral_drift_mps) {
   for (PhaseWindow& w : phases_) {
-    if (!w.start && time_s >= w.phase.from_s - kTimeEpsilonS) w.start = snapshot(session, time_s);
+    if (!w.start && time_s >= w.phase.from_s - kTimeEpsilonS) {
+      w.start = snapshot(session, time_s);
+      w.last_time_s = time_s;
+    }
     if (!w.start || w.end) continue;
+    // The forward position held over the cycle that ends now (the phase's last cycle included).
+    w.forward_integral_m_s += forward_m * (time_s - w.last_time_s);
+    w.forward_time_s += time_s - w.last_time_s;
+    w.last_time_s = time_s;
     if (time_s >= w.phase.to_s - kTimeEpsilonS) {
       w.end = snapshot(session, time_s);
       continue;
@@ -181,7 +189,8 @@ void Metrics::observe(const Session& session, const CycleRecord& cycle) {
   if (cycle.driver_running && s.mode == driver::DriverMode::kDriving && s.reference_supply_v > 0.0) {
     voltage_drop_v = s.reference_supply_v - s.supply_v;
   }
-  observe_phases(session, now, voltage_drop_v, joint_error_rad(t), bound_excess_rad,
+  observe_phases(session, now, t.position_m[0] - start_position_m_[0], voltage_drop_v,
+                 joint_error_rad(t), bound_excess_rad,
                  {t.joint_angle_rad[kFrontJoint], t.joint_angle_rad[kRearJoint]},
                  lateral_speed_mps, lateral_drift_mps);
   follow_truth_odometry(session, cycle, truth_odometry_);
@@ -296,6 +305,10 @@ void Metrics::add_phase_metrics(const PhaseWindow& w, const Snapshot& end,
   // exterior axle was immobile" during wheel walking).
   m[p + "front_axle_forward_m"] = end.axle_x_m[0] - start.axle_x_m[0];
   m[p + "rear_axle_forward_m"] = end.axle_x_m[1] - start.axle_x_m[1];
+  // The forward position (x from the run's start) averaged over the phase's time: the difference
+  // of two phases' means is an advance that a gait's strokes, back and forth, do not blur.
+  m[p + "mean_forward_m"] = w.forward_time_s > 0.0 ? w.forward_integral_m_s / w.forward_time_s
+                                                   : end.position_m[0] - start_position_m_[0];
 }
 
 void Metrics::observe_odometry(const Session& session) {

@@ -49,7 +49,8 @@
 // during the phase, ground truth: what the slant response (6.4) bounds), gait_state_changes,
 // max_lateral_speed_mps, max_lateral_drift_mps (windows ending within the phase),
 // front_axle_forward_m and rear_axle_forward_m (how far the midpoint of
-// each exterior axle's wheels went along x, ground truth). A phase starts at
+// each exterior axle's wheels went along x, ground truth), mean_forward_m (the rover's x from
+// the run's start, ground truth, averaged over the phase's time). A phase starts at
 // the first cycle at or after from_s and ends at the first at or after to_s (or with the run).
 #pragma once
 
@@ -108,11 +109,17 @@ class Metrics {
     double max_lateral_drift_mps = 0.0;
     std::array<double, 2> min_joint_rad{1e9, 1e9};    // p6, p7 (ground truth)
     std::array<double, 2> max_joint_rad{-1e9, -1e9};
+    // ∫ x dt over the phase (x: the truth's forward position from the run's start), and the
+    // time it covers, for the mean forward position.
+    double forward_integral_m_s = 0.0;
+    double forward_time_s = 0.0;
+    double last_time_s = 0.0;
   };
 
   Snapshot snapshot(const Session& session, double time_s) const;
   double joint_error_rad(const sim::GroundTruth& truth) const;
-  void observe_phases(const Session& session, double time_s, std::optional<double> voltage_drop_v,
+  void observe_phases(const Session& session, double time_s, double forward_m,
+                      std::optional<double> voltage_drop_v,
                       double joint_error_rad, double bound_excess_rad,
                       const std::array<double, 2>& joint_rad, double lateral_speed_mps,
                       std::optional<double> lateral_drift_mps);

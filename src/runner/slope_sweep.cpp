@@ -72,6 +72,17 @@ Scenario slope_climb_scenario(mobility::Gait gait, double slope_deg, const Climb
   }
   s.inputs = {{0.0, still}, {kStartupS, climb}};
   s.phases = {{"climb", kPhaseStartS, s.duration_s}};
+  if (!(spec.window_s >= 0.0) || !std::isfinite(spec.window_s) ||
+      2.0 * spec.window_s > spec.time_s) {
+    std::ostringstream message;
+    message << "slope climb: the window (" << spec.window_s
+            << " s) must be at least 0 and at most half the climb (" << spec.time_s << " s)";
+    throw std::invalid_argument(message.str());
+  }
+  if (spec.window_s > 0.0) {
+    s.phases.push_back({"before", s.duration_s - 2.0 * spec.window_s, s.duration_s - spec.window_s});
+    s.phases.push_back({"last", s.duration_s - spec.window_s, s.duration_s});
+  }
   return s;
 }
 
@@ -81,7 +92,11 @@ bool run_slope_climb(mobility::Gait gait, double slope_deg, const ClimbSpec& spe
   options.plots = false;
   options.rover_params = rover_params;
   const ScenarioResult r = run_scenario(slope_climb_scenario(gait, slope_deg, spec), params, options);
-  const double along = r.metrics.at("climb.forward_distance_m") / std::cos(radians(slope_deg));
+  const double forward_m =
+      spec.window_s > 0.0
+          ? r.metrics.at("last.mean_forward_m") - r.metrics.at("before.mean_forward_m")
+          : r.metrics.at("climb.forward_distance_m");
+  const double along = forward_m / std::cos(radians(slope_deg));
   if (advanced_m != nullptr) *advanced_m = along;
   return along >= spec.distance_m;
 }

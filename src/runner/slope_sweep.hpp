@@ -4,7 +4,12 @@
 // A climb: the rover starts square to a slope of the ground's material, joints vertical; after the
 // start-up (2.5 s) the operator drives straight at v1 = drive_radps, or runs the gait at full
 // speed (s = 1), for time_s. It climbed when in that time it advanced at least distance_m along
-// the slope (forward_distance_m / cos θ, ground truth). find_steepest bisects the angles 0,
+// the slope (forward_distance_m / cos θ, ground truth). With a window W > 0 it is judged at the
+// end instead: it climbed when it still gains distance_m there, its mean position along the
+// slope over the last W seconds that far ahead of its mean over the W seconds before (the
+// phases' mean_forward_m: a gait's strokes, back and forth, are averaged out). Over minutes a
+// rover driving up soft sand digs itself in after its first metres (docs/simulator.md); the
+// window sees whether a climb goes on. find_steepest bisects the angles 0,
 // step, 2·step, … up to the angle of repose of the ground's soil, assuming a climb that
 // succeeds on a slope succeeds on every gentler one.
 #pragma once
@@ -39,9 +44,11 @@ struct ClimbSpec {
   double time_s = 40.0;       // of driving or walking, after the start-up
   double distance_m = 0.1;    // along the slope
   std::uint64_t seed = 1;     // the rover unit
+  double window_s = 0.0;      // W: 0 judges the whole climb; > 0 its end (above), 2W ≤ time_s
 };
 
-// The climb above as a scenario (gait kNone: driving).
+// The climb above as a scenario (gait kNone: driving). Throws std::invalid_argument for a window
+// that is negative, not finite or longer than half the climb.
 Scenario slope_climb_scenario(mobility::Gait gait, double slope_deg, const ClimbSpec& spec);
 
 // Runs it; true when the rover climbed. `advanced_m` (optional) gets the advance along the slope.

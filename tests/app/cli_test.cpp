@@ -127,6 +127,12 @@ TEST(Cli, SlopeSweepRefusesRigidGroundAndBadNumbers) {
   r = cli({"--config", kConfig.c_str(), "slope-sweep", "--step", "0"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--step"), std::string::npos) << r.err;
+  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--time", "40", "--window", "25"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--window 25 is longer than half of --time 40"), std::string::npos) << r.err;
+  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--window", "-1"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--window"), std::string::npos) << r.err;
 }
 
 // CLI11's range checks compare, and every comparison with NaN is false: "--duration nan" ran

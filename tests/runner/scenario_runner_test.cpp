@@ -144,6 +144,13 @@ TEST(ScenarioRunner, ReportsTheRunsAndEachPhasesMetrics) {
               r.metrics.at("driving.forward_distance_m"), 0.005);
   EXPECT_NEAR(r.metrics.at("driving.rear_axle_forward_m"),
               r.metrics.at("driving.forward_distance_m"), 0.005);
+  // The mean forward position: standing, where the rover stands; driving (the run's last phase),
+  // between where the phase began and where it ended.
+  EXPECT_LT(std::abs(r.metrics.at("standing.mean_forward_m")), 0.01);
+  const double end_m = r.metrics.at("forward_distance_m");
+  const double start_m = end_m - r.metrics.at("driving.forward_distance_m");
+  EXPECT_GT(r.metrics.at("driving.mean_forward_m"), start_m);
+  EXPECT_LT(r.metrics.at("driving.mean_forward_m"), end_m);
   // The axle distances at the phase's end: the joints rest contracted after start-up (Remark
   // 3.1), γ = acos(a/b), where the lever stands vertical and c = sqrt(b² − a²) = 0.3867 m (Figure
   // 3.3); the law of cosines from the final angle must give the same c.

@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
+#include "runner/scenario_runner.hpp"
 #include "runner_test_support.hpp"
 
 namespace marsokhod::runner {
@@ -68,6 +70,47 @@ TEST(SlopeSweep, ASmallSweepOfDrivingOnSoftSandIsConfirmedByDirectClimbs) {
     EXPECT_LT(advanced, spec.distance_m);
   }
   EXPECT_EQ(find_steepest(climbs, 20.0, 5.0).steepest_deg, found.steepest_deg);
+}
+
+// The window judges a climb by its end: on flat hard ground at v1 = 1 rad/s the wheels roll at
+// r·v1 = 0.125 m/s without slip, so the mean positions of two 4-s windows lie 0.5 m apart.
+TEST(SlopeSweep, AWindowMeasuresTheAdvanceBetweenTheLastTwoWindowsMeans) {
+  ClimbSpec spec;
+  spec.ground = sim::hard_ground();
+  spec.time_s = 12.0;
+  spec.window_s = 4.0;
+  const Scenario scenario = slope_climb_scenario(mobility::Gait::kNone, 0.0, spec);
+  ASSERT_EQ(scenario.phases.size(), 3u);
+  EXPECT_DOUBLE_EQ(scenario.phases[1].from_s, scenario.duration_s - 8.0);
+  EXPECT_DOUBLE_EQ(scenario.phases[1].to_s, scenario.duration_s - 4.0);
+  EXPECT_DOUBLE_EQ(scenario.phases[2].to_s, scenario.duration_s);
+  double advanced = 0.0;
+  EXPECT_TRUE(run_slope_climb(mobility::Gait::kNone, 0.0, spec, testing::shipped_params(),
+                              nullptr, &advanced));
+  EXPECT_NEAR(advanced, 0.125 * 4.0, 0.025);
+  for (const double bad : {-1.0, 6.5, std::nan("")}) {
+    spec.window_s = bad;
+    EXPECT_THROW(slope_climb_scenario(mobility::Gait::kNone, 0.0, spec), std::invalid_argument)
+        << bad;
+  }
+}
+
+// Driving up 10° of the soil model's sand digs the rover in (docs/simulator.md, longer climbs):
+// in its first two minutes it gains more than a metre, so by the whole climb it climbed; by the
+// window at the end, where it has stopped, it did not (one run read both ways).
+TEST(SlopeSweep, DrivingUpTenDegreesOfSandClimbsFirstAndDigsItselfIn) {
+  ClimbSpec spec;
+  spec.ground = sim::sand();
+  spec.time_s = 120.0;
+  spec.window_s = 20.0;
+  RunOptions options;
+  options.plots = false;
+  const ScenarioResult r = run_scenario(slope_climb_scenario(mobility::Gait::kNone, 10.0, spec),
+                                        testing::shipped_params(), options);
+  const double along = 1.0 / std::cos(10.0 * std::numbers::pi / 180.0);
+  EXPECT_GT(r.metrics.at("climb.forward_distance_m") * along, 1.0);
+  EXPECT_LT((r.metrics.at("last.mean_forward_m") - r.metrics.at("before.mean_forward_m")) * along,
+            0.05);
 }
 
 }  // namespace
