@@ -2,8 +2,8 @@
 // every invariant of soak_checker.hpp checked every cycle. RELIABILITY.md reports the results.
 //
 // The run is cut into segments of at most segment_s (10 min) simulated time, alternately on hard
-// ground and on sand (a short run has one of each), each a fresh Session — a rover with a fresh
-// battery and a driver that starts up — with its own seeds derived from the soak's seed. The
+// ground and on sand, the soil model (a short run has one of each), each a fresh Session — a
+// rover with a fresh battery and a driver that starts up — with its own seeds derived from the soak's seed. The
 // same seed gives the same run, bit for bit (simulated time only; the wall clock is only
 // reported).
 //

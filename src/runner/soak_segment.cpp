@@ -15,7 +15,7 @@ sim::SimOptions sim_options(const SegmentPlan& plan) {
   sim::SimOptions options;
   options.seed = plan.seed;
   options.terrain.kind = sim::TerrainKind::kFlat;
-  options.terrain.ground = plan.sand ? sim::rigid_sand() : sim::hard_ground();
+  options.terrain.ground = plan.sand ? sim::sand() : sim::hard_ground();
   options.supply = sim::SupplyKind::kBattery;
   return options;
 }
