@@ -1,6 +1,6 @@
 // `marsokhod slope-sweep [--ground NAME] [--seed S] [--distance M] [--time S] [--window W]
-// [--step DEG] [--drive V1]`: the steepest slope of a soft soil the simulated rover climbs by driving and by
-// each gait (runner/slope_sweep.hpp), printed as a table beside [KG92]'s figures.
+// [--step DEG] [--drive V1]`: the steepest slope of a soft soil the simulated rover climbs by
+// driving and by each gait (runner/slope_sweep.hpp), printed as a table beside [KG92]'s figures.
 #pragma once
 
 #include <cstdint>

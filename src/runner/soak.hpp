@@ -3,9 +3,9 @@
 //
 // The run is cut into segments of at most segment_s (10 min) simulated time, alternately on hard
 // ground and on sand, the soil model (a short run has one of each), each a fresh Session — a
-// rover with a fresh battery and a driver that starts up — with its own seeds derived from the soak's seed. The
-// same seed gives the same run, bit for bit (simulated time only; the wall clock is only
-// reported).
+// rover with a fresh battery and a driver that starts up — with its own seeds derived from the
+// soak's seed. The same seed gives the same run, bit for bit (simulated time only; the wall clock
+// is only reported).
 //
 // The first violation is written as a replayable recording of the window_s (30 s) before it,
 // up to and including the violating cycle: the segment is run again (deterministically) with a

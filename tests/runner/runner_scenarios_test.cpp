@@ -173,10 +173,10 @@ TEST(ShippedScenarios, LoadDistributionAdvancesQuickerAndErodesLessOnLooseSand) 
 }
 
 // Chapter 6.3 on soft soil (sim/soil's Wong–Reece wheels on the deformable grid): the same climb
-// as above, the 12° slope without the slab, on the soil model's `sand`. The erosion is the soil the run
-// disturbed (soil_disturbed_m3: the earthwork's cut + fill) per metre the rover climbed. On seeds
-// 1–20 (RELIABILITY.md) h^v and h^s each climb further than no redistribution (20 of 20) and
-// disturb less soil per metre climbed (20 of 20: 0.58–0.87 and 0.71–0.89 of it); neither the
+// as above, the 12° slope without the slab, on the soil model's `sand`. The erosion is the soil
+// the run disturbed (soil_disturbed_m3: the earthwork's cut + fill) per metre the rover climbed.
+// On seeds 1–20 (RELIABILITY.md) h^v and h^s each climb further than no redistribution (20 of 20)
+// and disturb less soil per metre climbed (20 of 20: 0.58–0.87 and 0.71–0.89 of it); neither the
 // total disturbed (19 and 16 of 20 less) nor the compacted volume (0 and 2 of 20 less) is ordered,
 // so only the first two are checked, here on two units.
 double disturbed_per_metre_climbed(const ScenarioResult& r) {

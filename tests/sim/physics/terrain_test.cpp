@@ -59,7 +59,8 @@ TEST(TerrainFromToml, NamedAndCustomMaterials) {
   EXPECT_DOUBLE_EQ(sinking.ground.skid_sinkage, 1.5);
   EXPECT_TRUE(sand().soil.has_value());  // sand is the soil model's
   // Grass (Field Experiment 5.6): a third more sliding friction than hard ground, a rolling
-  // resistance C_rr = 0.01 m / 0.125 m = 0.08 (between a lawn's 0.05 and rigid sand's 0.16), no ploughing.
+  // resistance C_rr = 0.01 m / 0.125 m = 0.08 (between a lawn's 0.05 and rigid sand's 0.16), no
+  // ploughing.
   const TerrainSpec meadow = read("[terrain]\nkind = \"flat\"\nmaterial = \"grass\"\n");
   EXPECT_DOUBLE_EQ(meadow.ground.sliding_friction / hard_ground().sliding_friction, 4.0 / 3.0);
   EXPECT_DOUBLE_EQ(meadow.ground.rolling_friction_m / 0.125, 0.08);
@@ -69,7 +70,8 @@ TEST(TerrainFromToml, NamedAndCustomMaterials) {
 
 // Soft soils put sim/soil under the wheels: Wong's dry sand and the lunar soil.
 TEST(TerrainFromToml, SoftSoils) {
-  const TerrainSpec sand_terrain = read("[terrain]\nkind = \"slope\"\nslope_deg = 10\nmaterial = \"sand\"\n");
+  const TerrainSpec sand_terrain =
+      read("[terrain]\nkind = \"slope\"\nslope_deg = 10\nmaterial = \"sand\"\n");
   ASSERT_TRUE(sand_terrain.ground.soil.has_value());
   EXPECT_EQ(sand_terrain.ground.soil->name, "sand");
   EXPECT_DOUBLE_EQ(sand_terrain.ground.soil->frictional_modulus, 1528.43e3);
@@ -160,7 +162,8 @@ TEST(TerrainFromToml, ErrorsNameTheKey) {
   expect_error("[terrain]\nkind = \"slope\"\nslope_deg = \"steep\"\n", "terrain.slope_deg",
                "number");
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material", "unknown");
-  expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material", "\"rigid-sand\"");
+  expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material",
+               "\"rigid-sand\"");
   // The soil model's sand was called "soft-sand" until it became the sand.
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"soft-sand\"\n", "terrain.material",
                "\"soft-sand\" is now called \"sand\"");
