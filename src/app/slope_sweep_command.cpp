@@ -34,9 +34,9 @@ CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args) {
   cmd->add_option("--time", args.time_s, "seconds of driving or walking a climb gets (default 40)")
       ->check(finite_range(1.0, 3600.0));
   cmd->add_option("--window", args.window_s,
-                  "judge the climb at its end: the mean position along the slope over the last W "
-                  "seconds must lie --distance ahead of the mean over the W before (default 0: "
-                  "the advance over the whole climb)")
+                  "judge the climb at its end too: the mean position along the slope over the last "
+                  "W seconds must also lie --distance ahead of the mean over the W before (default "
+                  "0: only the advance over the whole climb)")
       ->check(finite_range(0.0, 1800.0));
   cmd->add_option("--step", args.step_deg, "the angles' resolution in degrees (default 0.5)")
       ->check(finite_range(0.1, 10.0));
@@ -75,9 +75,9 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
   char criterion[160];
   if (args.window_s > 0.0) {
     std::snprintf(criterion, sizeof criterion,
-                  "still %.2f m along the slope between the mean positions of the last two %.0f-s "
-                  "windows of %.0f s",
-                  args.distance_m, args.window_s, args.time_s);
+                  "%.2f m along the slope in %.0f s and still as much between the mean positions "
+                  "of its last two %.0f-s windows",
+                  args.distance_m, args.time_s, args.window_s);
   } else {
     std::snprintf(criterion, sizeof criterion, "%.2f m along the slope in %.0f s", args.distance_m,
                   args.time_s);

@@ -1,5 +1,6 @@
 #include "runner/slope_sweep.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -47,6 +48,12 @@ SteepestClimb find_steepest(const std::function<bool(double)>& climbs, double ma
   return result;
 }
 
+double judged_advance_m(const std::map<std::string, double>& metrics, double window_s) {
+  const double whole_m = metrics.at("climb.forward_distance_m");
+  if (!(window_s > 0.0)) return whole_m;
+  return std::min(whole_m, metrics.at("last.mean_forward_m") - metrics.at("before.mean_forward_m"));
+}
+
 Scenario slope_climb_scenario(mobility::Gait gait, double slope_deg, const ClimbSpec& spec) {
   Scenario s;
   std::ostringstream name;
@@ -92,11 +99,7 @@ bool run_slope_climb(mobility::Gait gait, double slope_deg, const ClimbSpec& spe
   options.plots = false;
   options.rover_params = rover_params;
   const ScenarioResult r = run_scenario(slope_climb_scenario(gait, slope_deg, spec), params, options);
-  const double forward_m =
-      spec.window_s > 0.0
-          ? r.metrics.at("last.mean_forward_m") - r.metrics.at("before.mean_forward_m")
-          : r.metrics.at("climb.forward_distance_m");
-  const double along = forward_m / std::cos(radians(slope_deg));
+  const double along = judged_advance_m(r.metrics, spec.window_s) / std::cos(radians(slope_deg));
   if (advanced_m != nullptr) *advanced_m = along;
   return along >= spec.distance_m;
 }

@@ -5,9 +5,10 @@
 // start-up (2.5 s) the operator drives straight at v1 = drive_radps, or runs the gait at full
 // speed (s = 1), for time_s. It climbed when in that time it advanced at least distance_m along
 // the slope (forward_distance_m / cos θ, ground truth). With a window W > 0 it is judged at the
-// end instead: it climbed when it still gains distance_m there, its mean position along the
-// slope over the last W seconds that far ahead of its mean over the W seconds before (the
-// phases' mean_forward_m: a gait's strokes, back and forth, are averaged out). Over minutes a
+// end as well: it climbed when it also still gains distance_m there, its mean position along
+// the slope over the last W seconds that far ahead of its mean over the W seconds before (the
+// phases' mean_forward_m: a gait's strokes, back and forth, are averaged out); the advance
+// reported is the smaller of the two. Over minutes a
 // rover driving up soft sand digs itself in after its first metres (docs/simulator.md); the
 // window sees whether a climb goes on. find_steepest bisects the angles 0,
 // step, 2·step, … up to the angle of repose of the ground's soil, assuming a climb that
@@ -16,6 +17,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,11 +49,18 @@ struct ClimbSpec {
   double window_s = 0.0;      // W: 0 judges the whole climb; > 0 its end (above), 2W ≤ time_s
 };
 
+// The forward advance [m, along x] a climb's metrics are judged by: the whole climb's; with a
+// window the smaller of it and what the end gained. The whole climb counts too because a rover
+// that slid back for minutes can lurch forward at the end (or off the soil's grid, which ends
+// 3 m behind the start: unit 2 "climbed" 27.5° so), and that is no climb.
+double judged_advance_m(const std::map<std::string, double>& metrics, double window_s);
+
 // The climb above as a scenario (gait kNone: driving). Throws std::invalid_argument for a window
 // that is negative, not finite or longer than half the climb.
 Scenario slope_climb_scenario(mobility::Gait gait, double slope_deg, const ClimbSpec& spec);
 
-// Runs it; true when the rover climbed. `advanced_m` (optional) gets the advance along the slope.
+// Runs it; true when the rover climbed. `advanced_m` (optional) gets the advance along the slope
+// (with a window, the smaller of the whole climb's and the end's).
 bool run_slope_climb(mobility::Gait gait, double slope_deg, const ClimbSpec& spec,
                      const Params& params, const Params* rover_params,
                      double* advanced_m = nullptr);

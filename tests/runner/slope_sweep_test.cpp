@@ -95,6 +95,21 @@ TEST(SlopeSweep, AWindowMeasuresTheAdvanceBetweenTheLastTwoWindowsMeans) {
   }
 }
 
+// With a window a climb is judged by the smaller of the whole climb's advance and the end's: a
+// rover that slid back 0.5 m and lurches 5 cm forward at the end did not climb.
+TEST(SlopeSweep, AWindowedClimbMustAlsoHaveGainedOverTheWhole) {
+  const std::map<std::string, double> slid{{"climb.forward_distance_m", -0.5},
+                                           {"before.mean_forward_m", -0.55},
+                                           {"last.mean_forward_m", -0.50}};
+  EXPECT_DOUBLE_EQ(judged_advance_m(slid, 20.0), -0.5);
+  EXPECT_DOUBLE_EQ(judged_advance_m(slid, 0.0), -0.5);
+  const std::map<std::string, double> dug_in{{"climb.forward_distance_m", 1.2},
+                                             {"before.mean_forward_m", 1.18},
+                                             {"last.mean_forward_m", 1.19}};
+  EXPECT_NEAR(judged_advance_m(dug_in, 20.0), 0.01, 1e-12);
+  EXPECT_DOUBLE_EQ(judged_advance_m(dug_in, 0.0), 1.2);
+}
+
 // Driving up 10° of the soil model's sand digs the rover in (docs/simulator.md, longer climbs):
 // in its first two minutes it gains more than a metre, so by the whole climb it climbed; by the
 // window at the end, where it has stopped, it did not (one run read both ways).
