@@ -37,7 +37,6 @@ void add_soil_metrics(const Session& session, double distance_m,
   if (soil == nullptr) return;
   const sim::soil::SoilGrid& grid = soil->grid();
   const sim::soil::SoilVolumes& v = grid.volumes();
-  const sim::soil::GridSpec& spec = grid.spec();
   const sim::soil::Earthwork earthwork = grid.earthwork();
   const double disturbed = earthwork.cut_m3 + earthwork.fill_m3;
   const double area = grid.compacted_area_m2();
@@ -46,9 +45,7 @@ void add_soil_metrics(const Session& session, double distance_m,
   m["soil_disturbed_m3"] = disturbed;
   m["soil_compacted_m3"] = v.compacted_m3;
   m["soil_mean_compaction_m"] = area > 0.0 ? v.compacted_m3 / area : 0.0;
-  m["soil_max_depth_m"] = grid.max_depth_m(spec.origin_x_m, spec.origin_y_m,
-                                           spec.origin_x_m + spec.cells_x * spec.cell_m,
-                                           spec.origin_y_m + spec.cells_y * spec.cell_m);
+  m["soil_max_depth_m"] = grid.deepest_m();
   const sim::GroundTruth truth = session.rover().truth();
   m["final_exterior_rut_depth_m"] = mean_rut_depth_m(
       grid, truth, std::array{kFrontLeft, kFrontRight, kBackLeft, kBackRight});

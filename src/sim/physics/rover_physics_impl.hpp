@@ -79,10 +79,13 @@ struct RoverPhysics::Impl {
   // took the grid's changes and how many make its period.
   int soil_field = -1, soil_field_geom = -1;
   double soil_field_cos = 1.0;
+  double soil_field_slope = 0.0;  // tan α of the ground's plane
   std::vector<double> soil_field_plane;  // the plane's height at each column's cells' centres
   std::array<double, 3> soil_field_normal{0.0, 0.0, 1.0};
   std::vector<int> soil_field_geoms;
   void copy_soil_to_field();
+  void follow_with_soil_window();
+  void place_soil_field_plane();
   bool chassis_near_soil() const;
   void update_soil_field();
 };

@@ -5,10 +5,14 @@
 // mass. The kinematics are those MuJoCo computed at the start of the last step, one step (1 ms)
 // old, as the skid sinkage's (rover_sinkage.cpp).
 //
-// The grid (kSoftSoilGrid, terrain_mjcf.hpp): 2 cm cells from x = −3 m to 9 m and y = −3 m to 3 m
-// around the start, at the ground's initial level (flat, or x·tan(slope) on a slope). Beyond it
-// the edge cells' heights continue. Each time the grid yields (every 10 ms, SoftSoil) the cells
-// that changed are copied into the MuJoCo height field the chassis meets (terrain_mjcf.hpp).
+// The grid (kSoftSoilGrid, terrain_mjcf.hpp): a window of 2 cm cells, 12 m by 6 m, from x = −3 m
+// to 9 m and y = −3 m to 3 m around the start, at the ground's initial level (flat, or x·tan(slope)
+// on a slope). It follows the rover: when the chassis comes within kSoilWindowMarginM of an edge,
+// the window moves by whole cells to put the chassis back at its middle along that axis
+// (SoilGrid::shift: the ground it takes in is undisturbed, the ruts it leaves behind are
+// forgotten but for the books), and the height field's geom moves with it. Beyond the window the
+// edge cells' heights continue. Each time the grid yields (every 10 ms, SoftSoil) the cells that
+// changed are copied into the MuJoCo height field the chassis meets (terrain_mjcf.hpp).
 // Blades: mirror-symmetric across the rover's middle — the left wheels right-handed, the right
 // wheels left-handed (docs/simulator.md), inclined at the geometry's blade_inclination_rad (i);
 // rim radius = wheel radius − 1 cm of blade.
@@ -32,6 +36,10 @@ constexpr double kBladeHeightM = 0.010;  // chapter 3.1: 0.125 m with blades, 0.
 constexpr double kSoilFieldReachM = 0.02;
 // A wheel whose contact is switched off (set_wheel_contact) is shown to the soil this high up.
 constexpr double kLiftedM = 10.0;
+// The soil's window moves when the chassis comes this close to its edge: more than the rover's
+// half length (0.66 m with the joints extended) and the cells its spoil and the repose around a
+// wheel reach (≈ 0.2 m), so that no wheel meets the window's edge.
+constexpr double kSoilWindowMarginM = 1.5;
 
 bool is_left_wheel(std::size_t wheel) {
   return wheel == kFrontLeft || wheel == kCenterLeft || wheel == kBackLeft;
@@ -58,10 +66,8 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   soil_field = require_id(*model, mjOBJ_HFIELD, kSoilFieldName);
   soil_field_geom = require_id(*model, mjOBJ_GEOM, kSoilFieldName);
   soil_field_cos = std::cos(slope_rad);
-  for (int ix = 0; ix < kSoftSoilGrid.cells_x; ++ix) {
-    soil_field_plane.push_back((kSoftSoilGrid.origin_x_m + (ix + 0.5) * kSoftSoilGrid.cell_m) *
-                               slope);
-  }
+  soil_field_slope = slope;
+  place_soil_field_plane();
   soil_field_normal = {-std::sin(slope_rad), 0.0, std::cos(slope_rad)};
   for (int geom = 0; geom < model->ngeom; ++geom) {
     if (model->geom_bodyid[geom] != 0 && (model->geom_contype[geom] & 2) != 0) {
@@ -70,6 +76,42 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   }
   // The model was built with the field at the initial level (mujoco_model.cpp).
   soft_soil->grid().clear_changed();
+}
+
+// The ground's plane under each column of the window's cells.
+void RoverPhysics::Impl::place_soil_field_plane() {
+  const soil::GridSpec& spec = soft_soil->grid().spec();
+  soil_field_plane.resize(static_cast<std::size_t>(spec.cells_x));
+  for (int ix = 0; ix < spec.cells_x; ++ix) {
+    soil_field_plane[static_cast<std::size_t>(ix)] =
+        (spec.origin_x_m + (ix + 0.5) * spec.cell_m) * soil_field_slope;
+  }
+}
+
+// The window's move (the file's header): by whole cells along each axis on which the chassis has
+// come within kSoilWindowMarginM of an edge, to the window's middle; the field's geom moves along
+// the ground's plane with it, and takes the whole window again.
+void RoverPhysics::Impl::follow_with_soil_window() {
+  soil::SoilGrid& grid = soft_soil->grid();
+  const soil::GridSpec& spec = grid.spec();
+  const auto cells_to_middle = [&](double at_m, double origin_m, int cells) {
+    const double span_m = cells * spec.cell_m;
+    if (at_m - origin_m >= kSoilWindowMarginM && origin_m + span_m - at_m >= kSoilWindowMarginM) {
+      return 0;
+    }
+    return static_cast<int>(std::lround((at_m - (origin_m + 0.5 * span_m)) / spec.cell_m));
+  };
+  const double x_m = data->qpos[ids.free_qpos], y_m = data->qpos[ids.free_qpos + 1];
+  const int dx = cells_to_middle(x_m, spec.origin_x_m, spec.cells_x);
+  const int dy = cells_to_middle(y_m, spec.origin_y_m, spec.cells_y);
+  if (dx == 0 && dy == 0) return;
+  grid.shift(dx, dy);
+  mjtNum* pos = model->geom_pos + 3 * soil_field_geom;
+  pos[0] += dx * spec.cell_m;
+  pos[1] += dy * spec.cell_m;
+  pos[2] += dx * spec.cell_m * soil_field_slope;
+  place_soil_field_plane();
+  update_soil_field();
 }
 
 // Elevation of a vertex: the cell's rise δ over the ground's plane (its initial level, x·tan α),
@@ -167,6 +209,7 @@ void RoverPhysics::Impl::update_soil_field() {
 
 void RoverPhysics::Impl::apply_soft_soil() {
   if (!soft_soil) return;
+  follow_with_soil_window();
   const mjModel& m = *model;
   mjData& d = *data;
   std::array<soil::WheelKinematics, kWheelCount> wheels{};

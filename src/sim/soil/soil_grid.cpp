@@ -70,29 +70,104 @@ void validate(const GridSpec& spec) {
 
 SoilGrid::SoilGrid(GridSpec spec, SoilParams soil,
                    const std::function<double(double, double)>& initial_surface_m)
-    : spec_(spec), soil_(std::move(soil)) {
+    : spec_(spec), soil_(std::move(soil)), initial_surface_m_(initial_surface_m) {
   validate(spec_);
   validate(soil_);
   const std::size_t count = static_cast<std::size_t>(spec_.cells_x) * spec_.cells_y;
   surface_.resize(count);
-  sinkage_.assign(count, 0.0);
-  compaction_.assign(count, 0.0);
+  initial_.resize(count);
+  sinkage_.resize(count);
+  compaction_.resize(count);
   for (int iy = 0; iy < spec_.cells_y; ++iy) {
     for (int ix = 0; ix < spec_.cells_x; ++ix) {
-      const double level = initial_surface_m(cell_x_m(ix), cell_y_m(iy));
-      if (!std::isfinite(level)) {
-        std::ostringstream message;
-        message << "the initial surface at cell (" << ix << ", " << iy << ") is " << level
-                << "; it must be a finite height in metres";
-        fail(message.str());
-      }
-      surface_[index(ix, iy)] = level;
+      start_cell(index(ix, iy), initial_level_m(ix, iy, spec_.origin_x_m, spec_.origin_y_m));
     }
   }
-  initial_ = surface_;
   mark_changed(0, 0, spec_.cells_x - 1, spec_.cells_y - 1);
   repose_step_m_ = spec_.cell_m * std::tan(soil_.repose_angle_rad) + 1e-12;
   inverse_unloading_ = (1.0 + 1e-12) / soil_.unloading_stiffness_ratio;  // a bound, not a value
+}
+
+double SoilGrid::initial_level_m(int ix, int iy, double origin_x_m, double origin_y_m) const {
+  const double level = initial_surface_m_(origin_x_m + (ix + 0.5) * spec_.cell_m,
+                                          origin_y_m + (iy + 0.5) * spec_.cell_m);
+  if (!std::isfinite(level)) {
+    std::ostringstream message;
+    message << "the initial surface at cell (" << ix << ", " << iy << ") is " << level
+            << "; it must be a finite height in metres";
+    fail(message.str());
+  }
+  return level;
+}
+
+// Cell i = (ix, iy) undisturbed at `level`.
+void SoilGrid::start_cell(std::size_t i, double level) {
+  surface_[i] = level;
+  initial_[i] = level;
+  sinkage_[i] = 0.0;
+  compaction_[i] = 0.0;
+}
+
+// The levels of the cells taken in come first (a surface that is not finite there leaves the
+// window as it was). Cells the window keeps move to their new indices in a pass whose direction
+// reads every source before it is overwritten (rows and columns ascending when the window moves
+// up, descending when it moves down); the others are counted into the books left behind before
+// they are overwritten.
+void SoilGrid::shift(int dx_cells, int dy_cells) {
+  if (dx_cells == 0 && dy_cells == 0) return;
+  const int nx = spec_.cells_x, ny = spec_.cells_y;
+  const double area = spec_.cell_m * spec_.cell_m;
+  const auto taken_in = [&](int ix, int iy) {  // a cell of the new window the old one lacks
+    const int from_x = ix + dx_cells, from_y = iy + dy_cells;
+    return from_x < 0 || from_x >= nx || from_y < 0 || from_y >= ny;
+  };
+  const double origin_x = spec_.origin_x_m + dx_cells * spec_.cell_m;
+  const double origin_y = spec_.origin_y_m + dy_cells * spec_.cell_m;
+  std::vector<double> levels;  // of the cells taken in, in raster order
+  for (int iy = 0; iy < ny; ++iy) {
+    for (int ix = 0; ix < nx; ++ix) {
+      if (taken_in(ix, iy)) levels.push_back(initial_level_m(ix, iy, origin_x, origin_y));
+    }
+  }
+  const auto kept = [&](int ix, int iy) {  // a cell of the old window the new one keeps
+    return ix - dx_cells >= 0 && ix - dx_cells < nx && iy - dy_cells >= 0 && iy - dy_cells < ny;
+  };
+  for (int iy = 0; iy < ny; ++iy) {
+    for (int ix = 0; ix < nx; ++ix) {
+      if (kept(ix, iy)) continue;
+      const std::size_t i = index(ix, iy);
+      const double change = surface_[i] - initial_[i];
+      (change < 0.0 ? behind_earthwork_.cut_m3 : behind_earthwork_.fill_m3) +=
+          std::abs(change) * area;
+      if (compaction_[i] > 0.0) behind_compacted_area_m2_ += area;
+      behind_deepest_m_ = std::max(behind_deepest_m_, -change);
+    }
+  }
+  spec_.origin_x_m = origin_x;
+  spec_.origin_y_m = origin_y;
+  const bool up_y = dy_cells >= 0, up_x = dx_cells >= 0;
+  for (int row = 0; row < ny; ++row) {
+    const int iy = up_y ? row : ny - 1 - row;
+    for (int column = 0; column < nx; ++column) {
+      const int ix = up_x ? column : nx - 1 - column;
+      const std::size_t i = index(ix, iy);
+      const int from_x = ix + dx_cells, from_y = iy + dy_cells;
+      if (from_x >= 0 && from_x < nx && from_y >= 0 && from_y < ny) {
+        const std::size_t from = index(from_x, from_y);
+        surface_[i] = surface_[from];
+        initial_[i] = initial_[from];
+        sinkage_[i] = sinkage_[from];
+        compaction_[i] = compaction_[from];
+      }
+    }
+  }
+  std::size_t next = 0;
+  for (int iy = 0; iy < ny; ++iy) {
+    for (int ix = 0; ix < nx; ++ix) {
+      if (taken_in(ix, iy)) start_cell(index(ix, iy), levels[next++]);
+    }
+  }
+  mark_changed(0, 0, nx - 1, ny - 1);
 }
 
 double SoilGrid::plastic_sinkage_m(double x_m, double y_m) const {
@@ -153,6 +228,9 @@ void SoilGrid::level() {
   std::fill(sinkage_.begin(), sinkage_.end(), 0.0);
   std::fill(compaction_.begin(), compaction_.end(), 0.0);
   volumes_ = SoilVolumes{};
+  behind_earthwork_ = Earthwork{};
+  behind_compacted_area_m2_ = 0.0;
+  behind_deepest_m_ = 0.0;
   mark_changed(0, 0, spec_.cells_x - 1, spec_.cells_y - 1);
 }
 
@@ -177,14 +255,22 @@ double SoilGrid::max_depth_m(double x0_m, double y0_m, double x1_m, double y1_m)
   return depth;
 }
 
+double SoilGrid::deepest_m() const {
+  double depth = behind_deepest_m_;
+  for (std::size_t i = 0; i < surface_.size(); ++i) {
+    depth = std::max(depth, initial_[i] - surface_[i]);
+  }
+  return depth;
+}
+
 double SoilGrid::compacted_area_m2() const {
   const auto cells = std::count_if(compaction_.begin(), compaction_.end(),
                                    [](double compaction_m) { return compaction_m > 0.0; });
-  return static_cast<double>(cells) * spec_.cell_m * spec_.cell_m;
+  return static_cast<double>(cells) * spec_.cell_m * spec_.cell_m + behind_compacted_area_m2_;
 }
 
 Earthwork SoilGrid::earthwork() const {
-  Earthwork e;
+  Earthwork e = behind_earthwork_;
   const double area = spec_.cell_m * spec_.cell_m;
   for (std::size_t i = 0; i < surface_.size(); ++i) {
     const double change = surface_[i] - initial_[i];

@@ -17,7 +17,14 @@
 // — Gauss–Seidel passes within a window. Every loop runs in a fixed order: bit-for-bit repeatable.
 //
 // Bookkeeping: cut_m3 counts every volume taken from a cell, fill_m3 every volume added, so
-//   Σ(surface − initial surface)·cell² = fill − cut,   cut − fill = compacted_m3.
+//   Σ(surface − initial surface)·cell² = fill − cut,   cut − fill = compacted_m3,
+// the sum over the cells in the window and those it left behind (shift).
+//
+// Window (shift): the grid covers a window of the ground that can move by whole cells, so that it
+// follows a rover across ground larger than itself. Cells the window keeps keep their state; cells
+// it takes in start undisturbed at the initial surface; cells it leaves behind are forgotten but
+// for their share of the earthwork, the compacted area and the deepest cut (their ruts do not come
+// back when the window returns over them).
 #pragma once
 
 #include <algorithm>
@@ -112,16 +119,24 @@ class SoilGrid {
   double cell_compaction_m(int ix, int iy) const { return compaction_[index(ix, iy)]; }
   double cell_initial_m(int ix, int iy) const { return initial_[index(ix, iy)]; }
   void set_cell_surface_m(int ix, int iy, double level_m);  // for tests and scenario set-up
-  // Raked level: every cell back at its initial surface, no sinkage or compaction, the books at 0.
+  // Raked level: every cell back at its initial surface, no sinkage or compaction, the books at 0
+  // (the ground the window left behind with them).
   void level();
+  // Moves the window dx_cells along x and dy_cells along y (its origin by whole cells): see the
+  // header comment. Every cell counts as changed. Throws std::invalid_argument when the initial
+  // surface is not finite on a cell taken in.
+  void shift(int dx_cells, int dy_cells);
   const SoilVolumes& volumes() const { return volumes_; }
   // The deepest a cell's surface lies below its initial level among the cells whose centres fall
   // inside [x0, x1] × [y0, y1] (a rut's or a trench's depth, vertical); 0 where none lies lower
   // or no centre falls inside.
   double max_depth_m(double x0_m, double y0_m, double x1_m, double y1_m) const;
-  // The area of the cells compacted in place (compaction_m > 0): compacted_m3 over it is the
-  // mean compaction of the ground the wheels pressed.
+  // The same over the whole window and the ground it left behind.
+  double deepest_m() const;
+  // The area of the cells compacted in place (compaction_m > 0), in the window and left behind:
+  // compacted_m3 over it is the mean compaction of the ground the wheels pressed.
   double compacted_area_m2() const;
+  // In the window and left behind.
   Earthwork earthwork() const;
   // The box of the cells whose surface may have changed since the last clear_changed() (all of
   // them after construction or level()): what a copy of the surface (the physics' height field)
@@ -164,9 +179,19 @@ class SoilGrid {
   void mark_changed(int min_x, int min_y, int max_x, int max_y);
   void mark_changed_cell(std::size_t cell);
 
+  // The initial surface at cell (ix, iy) of a window with that origin; throws when not finite.
+  double initial_level_m(int ix, int iy, double origin_x_m, double origin_y_m) const;
+  void start_cell(std::size_t i, double level_m);
+
   GridSpec spec_;
   SoilParams soil_;
+  std::function<double(double, double)> initial_surface_m_;
   std::vector<double> surface_, sinkage_, compaction_, initial_;
+  // What the cells the window left behind held (shift): their earthwork, compacted area and
+  // deepest cut.
+  Earthwork behind_earthwork_;
+  double behind_compacted_area_m2_ = 0.0;
+  double behind_deepest_m_ = 0.0;
   // Scratch of press(): the contact cells as bits over their search box (one cell of border),
   // row-major in 64-bit words; the rim cells.
   std::vector<std::uint64_t> contact_bits_;

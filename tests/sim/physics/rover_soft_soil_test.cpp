@@ -155,6 +155,44 @@ TEST(RoverSoftSoil, TrenchWithTheFrontRightWheelDigsAboutNineCentimetres) {
             0.01);
 }
 
+// Checks that a vertical ray onto the terrain meets the soil's field where the grid's cells say,
+// over the cells [ix0, ix1) (every second) × [iy0, iy1) of the window, on a ground of slope α (see
+// TheHeightFieldFollowsTheRuts); returns the lowest and the highest rise over the plane met.
+std::pair<double, double> expect_field_holds_grid(const RoverPhysics& physics, double alpha,
+                                                  int ix0, int ix1, int iy0, int iy1) {
+  const soil::SoilGrid& grid = physics.soft_soil()->grid();
+  const soil::GridSpec& spec = grid.spec();
+  const auto centre_x = [&](int ix) { return spec.origin_x_m + (ix + 0.5) * spec.cell_m; };
+  const auto rise = [&](int ix, int iy) {
+    return grid.cell_surface_m(ix, iy) - centre_x(ix) * std::tan(alpha);
+  };
+  const auto vertex = [&](int ix, int iy) {  // (x, z) of the field's vertex of a cell
+    const double delta = rise(ix, iy);
+    return std::pair{centre_x(ix) - delta * std::cos(alpha) * std::sin(alpha),
+                     centre_x(ix) * std::tan(alpha) + delta * std::cos(alpha) * std::cos(alpha)};
+  };
+  double deepest = 0.0, highest = 0.0;
+  for (int iy = iy0; iy < iy1; ++iy) {
+    for (int ix = ix0; ix < ix1; ix += 2) {
+      const double x = centre_x(ix);
+      const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
+      deepest = std::min(deepest, rise(ix, iy));
+      highest = std::max(highest, rise(ix, iy));
+      auto [x0, z0] = vertex(ix, iy);
+      auto [x1, z1] = vertex(ix + 1, iy);
+      if (x0 > x) {  // moved uphill of the centre (a rut): the edge to the downhill neighbour
+        std::tie(x1, z1) = std::pair{x0, z0};
+        std::tie(x0, z0) = vertex(ix - 1, iy);
+      }
+      const double expected = z0 + (x - x0) / (x1 - x0) * (z1 - z0);
+      EXPECT_NEAR(physics.terrain_height_m(x, y), expected, alpha == 0.0 ? 1e-7 : 1e-6)
+          << ix << ", " << iy << ": the cell's surface " << grid.cell_surface_m(ix, iy);
+      if (::testing::Test::HasFailure()) return {deepest, highest};
+    }
+  }
+  return {deepest, highest};
+}
+
 // The soil's MuJoCo height field (terrain_mjcf.hpp) holds the grid's surface: a vertical ray onto
 // the terrain, which the chassis' collisions share, meets the ruts and rims the wheels left. On
 // flat ground exactly at each cell's centre (the field's vertex there; float's 24 bits over its
@@ -172,47 +210,66 @@ TEST(RoverSoftSoil, TheHeightFieldFollowsTheRuts) {
     run(physics, 500);
     physics.set_drive(drive_at(all_wheels(2.0)));
     run(physics, 2000);  // a multiple of the field's 10 ms: it holds the grid of this step
-    const soil::SoilGrid& grid = physics.soft_soil()->grid();
-    const soil::GridSpec& spec = grid.spec();
     const double alpha = slope * std::numbers::pi / 180.0;
-    const auto centre_x = [&](int ix) { return spec.origin_x_m + (ix + 0.5) * spec.cell_m; };
-    const auto rise = [&](int ix, int iy) {
-      return grid.cell_surface_m(ix, iy) - centre_x(ix) * std::tan(alpha);
-    };
-    const auto vertex = [&](int ix, int iy) {  // (x, z) of the field's vertex of a cell
-      const double delta = rise(ix, iy);
-      return std::pair{centre_x(ix) - delta * std::cos(alpha) * std::sin(alpha),
-                       centre_x(ix) * std::tan(alpha) + delta * std::cos(alpha) * std::cos(alpha)};
-    };
-    double deepest = 0.0, highest = 0.0;
-    int cells = 0;
-    for (int iy = 100; iy < 200; ++iy) {       // y −1…1 m
-      for (int ix = 100; ix < 250; ix += 2) {  // x −1…2 m
-        const double x = centre_x(ix);
-        const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
-        deepest = std::min(deepest, rise(ix, iy));
-        highest = std::max(highest, rise(ix, iy));
-        auto [x0, z0] = vertex(ix, iy);
-        auto [x1, z1] = vertex(ix + 1, iy);
-        if (x0 > x) {  // moved uphill of the centre (a rut): the edge to the downhill neighbour
-          std::tie(x1, z1) = std::pair{x0, z0};
-          std::tie(x0, z0) = vertex(ix - 1, iy);
-        }
-        const double expected = z0 + (x - x0) / (x1 - x0) * (z1 - z0);
-        ASSERT_NEAR(physics.terrain_height_m(x, y), expected, slope == 0.0 ? 1e-7 : 1e-6)
-            << ix << ", " << iy << ": the cell's surface " << grid.cell_surface_m(ix, iy);
-        ++cells;
-      }
-    }
-    EXPECT_EQ(cells, 7500);
+    // y −1…1 m, x −1…2 m: 100 rows of 75 cells.
+    const auto [deepest, highest] = expect_field_holds_grid(physics, alpha, 100, 250, 100, 200);
     EXPECT_LT(deepest, -0.01);  // ruts 1 cm deep and more, and heaped rims beside them
     EXPECT_GT(highest, 0.002);
     // Raked level (the calibration bench's level_soil), the field is the plane again.
     physics.level_soil();
+    const soil::GridSpec& spec = physics.soft_soil()->grid().spec();
     for (int ix = 100; ix < 250; ix += 7) {
-      const double x = centre_x(ix);
+      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
       ASSERT_NEAR(physics.terrain_height_m(x, 0.29), x * std::tan(alpha), 1e-7) << ix;
     }
+  }
+}
+
+// The soil's window (12 m × 6 m, −3…9 m in x at the start) follows the rover. Backing down from
+// the start, flat and down 10°, the chassis comes within 1.5 m of the window's back edge at x =
+// −1.5 m: the window moves back 6 m less that, by whole 2 cm cells, to put the chassis at its
+// middle. The rover goes on on the soil it stood on (the chassis' height changes by no more across
+// the move than in the 50 ms around it before), the ruts it left behind are still under it, and
+// the height field moved with the grid: the rays meet the cells where the grid says.
+TEST(RoverSoftSoil, TheSoilsWindowFollowsTheRover) {
+  for (const double slope : {0.0, 10.0}) {
+    SCOPED_TRACE(slope);
+    TerrainSpec terrain = slope == 0.0 ? soft_flat() : slope_deg(slope);
+    terrain.ground = sand();
+    RoverPhysics physics(Params{}, terrain);
+    run(physics, 500);
+    physics.set_drive(drive_at(all_wheels(-2.0)));
+    const soil::SoilGrid& grid = physics.soft_soil()->grid();
+    const double start_origin = grid.spec().origin_x_m;
+    double height_before = 0.0, settled_change = 0.0;
+    int steps = 0;
+    while (grid.spec().origin_x_m == start_origin && steps < 40000) {
+      height_before = physics.truth().position_m[2];
+      run(physics, 50);
+      settled_change = std::max(settled_change, std::abs(physics.truth().position_m[2] -
+                                                         height_before));
+      steps += 50;
+    }
+    ASSERT_LT(steps, 40000) << "the window never moved";
+    const double x = physics.truth().position_m[0];
+    EXPECT_LT(x, -1.5 + 0.05);
+    EXPECT_GT(x, -1.5 - 0.05);
+    const soil::GridSpec& spec = grid.spec();
+    const double moved_cells = (spec.origin_x_m - start_origin) / spec.cell_m;
+    EXPECT_NEAR(moved_cells, std::round(moved_cells), 1e-9);
+    EXPECT_NEAR(spec.origin_x_m + 0.5 * spec.cells_x * spec.cell_m, x, 0.02 + 0.05);
+    EXPECT_EQ(spec.origin_y_m, -3.0);  // it did not come near a side
+    // The 50 ms in which the window moved changed the height no more than the others.
+    EXPECT_LE(std::abs(physics.truth().position_m[2] - height_before), settled_change + 1e-9);
+    run(physics, 1000);
+    expect_healthy(physics);
+    // Its ruts: under the centre wheels and a metre ahead of the rover, where it came from.
+    const int rover_ix = static_cast<int>((x - spec.origin_x_m) / spec.cell_m);
+    const double alpha = slope * std::numbers::pi / 180.0;
+    const auto [deepest, highest] =
+        expect_field_holds_grid(physics, alpha, rover_ix - 25, rover_ix + 50, 125, 175);
+    EXPECT_LT(deepest, -0.01);
+    EXPECT_GT(highest, 0.001);
   }
 }
 

@@ -131,6 +131,91 @@ TEST(SoilGrid, LevelRakesEveryCellBackToItsInitialSurface) {
 
 // A 10 cm column of sand slumps until no two neighbours differ by more than cell·tan(repose),
 // with every cubic millimetre accounted for.
+// The window moves by whole cells: the cells it keeps hold their state at the same place on the
+// ground, the cells it takes in are undisturbed at the initial surface there, and the cells it
+// leaves behind keep their share of the books (earthwork, compacted area, deepest cut) though
+// their ruts are gone when the window comes back over them. Raking clears those books too.
+TEST(SoilGrid, ShiftMovesTheWindowAndKeepsTheBooks) {
+  const auto tilted = [](double x, double y) { return 0.1 * x + 0.05 * y; };
+  SoilGrid grid(small_grid(), dry_sand(), tilted);
+  grid.press({{0.0, 0.0, 0.115 - 0.02}, {0.0, 1.0, 0.0}, 0.115, 0.15});
+  const SoilGrid before = grid;
+  const Earthwork work = grid.earthwork();
+  const double area = grid.compacted_area_m2();
+  const double deepest = grid.deepest_m();
+  ASSERT_GT(deepest, 0.015);
+  ASSERT_GT(area, 0.0);
+  grid.clear_changed();
+
+  grid.shift(3, -2);
+  const GridSpec& spec = grid.spec();
+  EXPECT_NEAR(spec.origin_x_m, -0.5 + 3 * kCellM, 1e-15);
+  EXPECT_NEAR(spec.origin_y_m, -0.3 - 2 * kCellM, 1e-15);
+  const CellBox changed = grid.changed();
+  EXPECT_EQ(changed.min_x, 0);
+  EXPECT_EQ(changed.min_y, 0);
+  EXPECT_EQ(changed.max_x, spec.cells_x - 1);
+  EXPECT_EQ(changed.max_y, spec.cells_y - 1);
+  for (int iy = 0; iy < spec.cells_y; ++iy) {
+    for (int ix = 0; ix < spec.cells_x; ++ix) {
+      const int from_x = ix + 3, from_y = iy - 2;
+      if (from_x < spec.cells_x && from_y >= 0) {
+        ASSERT_EQ(grid.cell_surface_m(ix, iy), before.cell_surface_m(from_x, from_y));
+        ASSERT_EQ(grid.cell_initial_m(ix, iy), before.cell_initial_m(from_x, from_y));
+        ASSERT_EQ(grid.cell_sinkage_m(ix, iy), before.cell_sinkage_m(from_x, from_y));
+        ASSERT_EQ(grid.cell_compaction_m(ix, iy), before.cell_compaction_m(from_x, from_y));
+      } else {
+        const double x = spec.origin_x_m + (ix + 0.5) * kCellM;
+        const double y = spec.origin_y_m + (iy + 0.5) * kCellM;
+        ASSERT_NEAR(grid.cell_surface_m(ix, iy), tilted(x, y), 1e-15) << ix << ", " << iy;
+        ASSERT_EQ(grid.cell_initial_m(ix, iy), grid.cell_surface_m(ix, iy));
+        ASSERT_EQ(grid.cell_sinkage_m(ix, iy), 0.0);
+        ASSERT_EQ(grid.cell_compaction_m(ix, iy), 0.0);
+      }
+    }
+  }
+  // The same ground under the same world point.
+  EXPECT_NEAR(grid.surface_m(0.003, 0.002), before.surface_m(0.003, 0.002), 1e-15);
+  EXPECT_NEAR(grid.undisturbed_m(0.003, 0.002), before.undisturbed_m(0.003, 0.002), 1e-15);
+  EXPECT_NEAR(grid.earthwork().cut_m3, work.cut_m3, 1e-15);
+  EXPECT_NEAR(grid.earthwork().fill_m3, work.fill_m3, 1e-15);
+
+  // Far away: every cell left behind, the books kept; back again: undisturbed ground.
+  grid.shift(-200, 0);
+  EXPECT_NEAR(grid.earthwork().cut_m3, work.cut_m3, 1e-15);
+  EXPECT_NEAR(grid.earthwork().fill_m3, work.fill_m3, 1e-15);
+  EXPECT_NEAR(grid.compacted_area_m2(), area, 1e-15);
+  EXPECT_EQ(grid.deepest_m(), deepest);
+  EXPECT_EQ(grid.max_depth_m(-10.0, -10.0, 10.0, 10.0), 0.0);  // nothing in the window
+  grid.shift(197, 2);
+  EXPECT_NEAR(grid.spec().origin_x_m, -0.5, 1e-12);
+  EXPECT_NEAR(grid.spec().origin_y_m, -0.3, 1e-12);
+  EXPECT_NEAR(grid.surface_m(0.0, 0.0), tilted(0.0, 0.0), 1e-12);  // the rut is forgotten
+  EXPECT_EQ(grid.cell_sinkage_m(50, 30), 0.0);
+  EXPECT_NEAR(grid.earthwork().cut_m3, work.cut_m3, 1e-15);
+  EXPECT_EQ(grid.volumes().compacted_m3, before.volumes().compacted_m3);
+
+  grid.level();
+  EXPECT_EQ(grid.earthwork().cut_m3, 0.0);
+  EXPECT_EQ(grid.earthwork().fill_m3, 0.0);
+  EXPECT_EQ(grid.compacted_area_m2(), 0.0);
+  EXPECT_EQ(grid.deepest_m(), 0.0);
+}
+
+// A surface that is not finite where the window moves to is refused, naming the cell, and the
+// window stays where it was, as it was.
+TEST(SoilGrid, ShiftRefusesANonFiniteSurface) {
+  SoilGrid grid(small_grid(), dry_sand(),
+                [](double x, double) { return x < 1.0 ? 0.0 : std::nan(""); });
+  grid.press({{0.0, 0.0, 0.115 - 0.02}, {0.0, 1.0, 0.0}, 0.115, 0.15});
+  const SoilGrid before = grid;
+  test_support::expect_invalid_argument([&] { grid.shift(100, 0); },
+                                        {"the initial surface at cell (", "finite"});
+  EXPECT_EQ(grid.spec().origin_x_m, before.spec().origin_x_m);
+  EXPECT_EQ(grid.cell_surface_m(50, 30), before.cell_surface_m(50, 30));
+  EXPECT_EQ(grid.earthwork().cut_m3, before.earthwork().cut_m3);
+}
+
 TEST(SoilGrid, SlopesRelaxToTheAngleOfRepose) {
   Footprint window;
   window.min_x = window.max_x = 50;
