@@ -28,6 +28,13 @@ TerrainSpec soft_flat() {
   return terrain;
 }
 
+// Soft sand, flat or sloped (degrees, rising along +x).
+TerrainSpec soft_sloped(double slope) {
+  TerrainSpec terrain = slope == 0.0 ? soft_flat() : slope_deg(slope);
+  terrain.ground = sand();
+  return terrain;
+}
+
 // Sets every cell of the soil whose centre (x, y) is `inside` to the level `level_m` (a mound or
 // a ridge, undisturbed soil at that height).
 template <typename Inside>
@@ -204,9 +211,7 @@ std::pair<double, double> expect_field_holds_grid(const RoverPhysics& physics, d
 TEST(RoverSoftSoil, TheHeightFieldFollowsTheRuts) {
   for (const double slope : {0.0, 10.0}) {
     SCOPED_TRACE(slope);
-    TerrainSpec terrain = slope == 0.0 ? soft_flat() : slope_deg(slope);
-    terrain.ground = sand();
-    RoverPhysics physics(Params{}, terrain);
+    RoverPhysics physics(Params{}, soft_sloped(slope));
     run(physics, 500);
     physics.set_drive(drive_at(all_wheels(2.0)));
     run(physics, 2000);  // a multiple of the field's 10 ms: it holds the grid of this step
@@ -227,16 +232,14 @@ TEST(RoverSoftSoil, TheHeightFieldFollowsTheRuts) {
 
 // The soil's window (12 m × 6 m, −3…9 m in x at the start) follows the rover. Backing down from
 // the start, flat and down 10°, the chassis comes within 1.5 m of the window's back edge at x =
-// −1.5 m: the window moves back 6 m less that, by whole 2 cm cells, to put the chassis at its
-// middle. The rover goes on on the soil it stood on (the chassis' height changes by no more across
-// the move than in the 50 ms around it before), the ruts it left behind are still under it, and
-// the height field moved with the grid: the rays meet the cells where the grid says.
+// −1.5 m: the window moves back 4.5 m, by whole 2 cm cells, to put the chassis at its middle. The
+// rover goes on on the soil it stood on (the chassis' height changes by no more in the 50 ms of
+// the move than in any 50 ms before), the ruts it left behind are still under it, and the height
+// field moved with the grid: the rays meet the cells where the grid says.
 TEST(RoverSoftSoil, TheSoilsWindowFollowsTheRover) {
   for (const double slope : {0.0, 10.0}) {
     SCOPED_TRACE(slope);
-    TerrainSpec terrain = slope == 0.0 ? soft_flat() : slope_deg(slope);
-    terrain.ground = sand();
-    RoverPhysics physics(Params{}, terrain);
+    RoverPhysics physics(Params{}, soft_sloped(slope));
     run(physics, 500);
     physics.set_drive(drive_at(all_wheels(-2.0)));
     const soil::SoilGrid& grid = physics.soft_soil()->grid();
