@@ -102,7 +102,7 @@ MotionController::MotionController(const Params& params)
                           joint_dead_time_s_
                     : 0.0),
       gait_(params.geometry, joints_, params.gaits, params.motors),
-      gravity_(params.sensors.gravity_mps2) {}
+      slope_(params.sensors.gravity_mps2) {}
 
 void MotionController::reset_joint_positions(const MotorVector& position_rad) {
   backlash_.reset(position_rad);
@@ -287,15 +287,16 @@ behaviour::JointBounds MotionController::update_slope_and_bounds(const MotionInp
                                                                  const RuntimeSettings& settings,
                                                                  DriverStatus& status) {
   // 6.2.1: gravity, slope σ and the joint bounds (6.4).
+  // The lever correction is filtered with the readings (slope_estimate.hpp).
   const auto& a = input.accel_mps2;
   if (std::hypot(a[0], a[1], a[2]) > 0.1 * params_->sensors.gravity_mps2) {
-    gravity_.update(a, params_->filters.gravity_lambda);
+    const double p6 = status.motors[kFrontJoint].position_rad;
+    const double p7 = status.motors[kRearJoint].position_rad;
+    slope_.update(a, mobility::front_lever(p6, params_->geometry).inclination_rad,
+                  mobility::rear_lever(p7, params_->geometry).inclination_rad,
+                  params_->filters.gravity_lambda);
   }
-  const double p6 = status.motors[kFrontJoint].position_rad;
-  const double p7 = status.motors[kRearJoint].position_rad;
-  status.slope_rad = behaviour::terrain_slope_rad(
-      gravity_.direction(), mobility::front_lever(p6, params_->geometry).inclination_rad,
-      mobility::rear_lever(p7, params_->geometry).inclination_rad);
+  status.slope_rad = slope_.slope_rad();
   // Slopes within the dead band count as flat: noise and bumps must not move the joints. Beyond
   // it γ(σ) applies unchanged; (4.16) smooths the step of the bound at the threshold.
   const double slope =

@@ -104,7 +104,7 @@ class MotionController {
   double run_on_s_;
   mobility::GaitSequencer gait_;
   mobility::DrivingIntent intent_ = mobility::DrivingIntent::kForward;
-  behaviour::GravityEstimate gravity_;
+  behaviour::SlopeEstimate slope_;
   behaviour::AxlePlacementState front_placement_;
   behaviour::AxlePlacementState rear_placement_;
   std::array<double, 4> drive_velocity_{};  // v1, v2, v3, v4 after (4.14)

@@ -65,4 +65,23 @@ double terrain_slope_rad(const Vector3& gravity_direction, double front_lever_in
          (rear_lever_inclination_rad - front_lever_inclination_rad) / 2.0;
 }
 
+SlopeEstimate::SlopeEstimate(double gravity_mps2) : gravity_(gravity_mps2) {}
+
+void SlopeEstimate::update(const Vector3& acceleration_mps2, double front_lever_inclination_rad,
+                           double rear_lever_inclination_rad, double lambda) {
+  constexpr const char* kFunction = "SlopeEstimate::update";
+  checks::require_finite_estimate(front_lever_inclination_rad, kFunction,
+                                  "front_lever_inclination_rad");
+  checks::require_finite_estimate(rear_lever_inclination_rad, kFunction,
+                                  "rear_lever_inclination_rad");
+  gravity_.update(acceleration_mps2, lambda);  // throws first: then nothing changed
+  correction_rad_ = lambda * correction_rad_ +
+                    (1.0 - lambda) * (rear_lever_inclination_rad - front_lever_inclination_rad) / 2.0;
+}
+
+double SlopeEstimate::slope_rad() const {
+  const double forward_component = std::clamp(gravity_.direction()[0], -1.0, 1.0);
+  return std::acos(forward_component) - std::numbers::pi / 2.0 + correction_rad_;
+}
+
 }  // namespace marsokhod::behaviour

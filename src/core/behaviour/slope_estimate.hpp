@@ -20,6 +20,17 @@
 // reading, half the time each way: the thesis' average gives 21.86°, the mean of the readings
 // 20° exactly (tested).
 //
+// The lever correction low-passed like the readings (SlopeEstimate; not in the thesis, which adds
+// (αr − αf)/2 as it stands). The centre unit's pitch against the line of the exterior axles
+// changes as fast as a joint bends; the filtered gravity follows it with the filter's lag (1.6 s)
+// while the unfiltered correction does not, and on flat ground the difference read as slope:
+// front-wheel walking in the simulator, the joint bending 1.3 rad in 3 s and pitching the centre
+// unit 0.10 rad, read σ from −0.06 to +0.11 rad, beyond the slant dead band (0.05), and the slant
+// response (6.4) moved the held rear joint from 1.21 to 1.50 rad every stroke. Filtered alike,
+// the pitch and its correction cancel at every instant on flat ground (for small angles acos(g1)
+// − π/2 is the filtered pitch), and σ is the filtered slope: ā⁰ and c⁰ = 0 both start from flat
+// ground.
+//
 // Sign convention: nose up by θ on a slope tilts x1 upward, so gravity gains a component
 // against x1: a = 9.81 (−sin θ, 0, −cos θ), g1 = −sin θ < 0, acos(g1) = π/2 + θ and σ = θ > 0
 // (with αf = αr). Hence a1 < 0 means nose up, σ > 0 means driving uphill (6.2.2's reading),
@@ -61,5 +72,27 @@ inline constexpr Vector3 kInitialGravityDirection{0.0, 0.0, -1.0};
 // finite.
 double terrain_slope_rad(const Vector3& gravity_direction, double front_lever_inclination_rad,
                          double rear_lever_inclination_rad);
+
+// The slope σ as the driver reads it: the gravity filter and the lever correction
+// c = (αr − αf)/2 filtered alike (above),
+//   c^k = λ c^(k−1) + (1 − λ)(αr − αf)/2,   c⁰ = 0,   σ = acos(g1) − π/2 + c.
+class SlopeEstimate {
+ public:
+  // Throws std::invalid_argument unless gravity_mps2 > 0 and finite.
+  explicit SlopeEstimate(double gravity_mps2);
+
+  // One step of both filters. Throws std::invalid_argument as GravityEstimate::update, or if an
+  // inclination is not finite; the estimate is unchanged then.
+  void update(const Vector3& acceleration_mps2, double front_lever_inclination_rad,
+              double rear_lever_inclination_rad, double lambda);
+
+  double slope_rad() const;
+  const GravityEstimate& gravity() const { return gravity_; }
+  double lever_correction_rad() const { return correction_rad_; }
+
+ private:
+  GravityEstimate gravity_;
+  double correction_rad_ = 0.0;
+};
 
 }  // namespace marsokhod::behaviour
