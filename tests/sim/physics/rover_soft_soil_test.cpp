@@ -235,7 +235,8 @@ TEST(RoverSoftSoil, TheHeightFieldFollowsTheRuts) {
 // −1.5 m: the window moves back 4.5 m, by whole 2 cm cells, to put the chassis at its middle. The
 // rover goes on on the soil it stood on (the chassis' height changes by no more in the 50 ms of
 // the move than in any 50 ms before), the ruts it left behind are still under it, and the height
-// field moved with the grid: the rays meet the cells where the grid says.
+// field moved with the grid: the rays meet the cells where the grid says, and on flat ground the
+// chassis rests on a mound raised in the moved window.
 TEST(RoverSoftSoil, TheSoilsWindowFollowsTheRover) {
   for (const double slope : {0.0, 10.0}) {
     SCOPED_TRACE(slope);
@@ -273,6 +274,24 @@ TEST(RoverSoftSoil, TheSoilsWindowFollowsTheRover) {
         expect_field_holds_grid(physics, alpha, rover_ix - 25, rover_ix + 50, 125, 175);
     EXPECT_LT(deepest, -0.01);
     EXPECT_GT(highest, 0.001);
+    if (slope != 0.0) continue;
+    // The chassis meets the moved field too: stopped, a 10 cm mound raised under the front
+    // exterior axle lifts its capsule onto it (TheChassisRestsOnAMoundOfSoil: 0.10 + 0.04 m).
+    physics.set_drive(drive_at(all_wheels(0.0)));
+    const GroundTruth stopped = physics.truth();
+    const double axle_x = stopped.wheel_position_m[kFrontLeft][0];
+    const double axle_y = stopped.position_m[1];
+    raise_soil(
+        physics,
+        [&](double cx, double cy) {
+          return std::abs(cx - axle_x) < 0.06 && std::abs(cy - axle_y) < 0.15;
+        },
+        0.10);
+    run(physics, 1000);
+    const GroundTruth lifted = physics.truth();
+    EXPECT_NEAR(
+        0.5 * (lifted.wheel_position_m[kFrontLeft][2] + lifted.wheel_position_m[kFrontRight][2]),
+        0.14, 0.01);
   }
 }
 
