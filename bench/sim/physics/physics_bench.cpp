@@ -1,7 +1,8 @@
 // The cost of one physics step: RoverPhysics::step (joint modes, then mj_step) against a bare
 // mj_step on the same generated model, and on sand, a heightfield and the soft sand of
 // sim/soil (terrain 3: Wong–Reece forces per wheel on a deformable grid). The counter
-// real_time_factor is simulated seconds per wall-clock second.
+// real_time_factor is simulated seconds per wall-clock second. And the soil window's move
+// (SoilGrid::shift on the simulator's 600 × 300 cells by 4.5 m, as when the rover nears an edge).
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -12,6 +13,8 @@
 #include "sim/physics/mujoco_model.hpp"
 #include "sim/physics/rover_mjcf.hpp"
 #include "sim/physics/rover_physics.hpp"
+#include "sim/physics/terrain_mjcf.hpp"
+#include "sim/soil/soil_grid.hpp"
 
 namespace marsokhod::sim {
 namespace {
@@ -51,6 +54,17 @@ void BM_RoverPhysicsStep(benchmark::State& state) {
   set_real_time_factor(state);
 }
 BENCHMARK(BM_RoverPhysicsStep)->ArgName("terrain")->Arg(0)->Arg(1)->Arg(2)->Arg(3);
+
+void BM_SoilWindowShift(benchmark::State& state) {
+  soil::SoilGrid grid(kSoftSoilGrid, soil::dry_sand(), [](double, double) { return 0.0; });
+  int direction = 1;
+  for (auto _ : state) {
+    grid.shift(direction * 225, 0);  // 4.5 m of 2 cm cells, back and forth
+    direction = -direction;
+    benchmark::DoNotOptimize(grid.cell_surface_m(0, 0));
+  }
+}
+BENCHMARK(BM_SoilWindowShift)->Unit(benchmark::kMillisecond);
 
 void BM_BareMjStep(benchmark::State& state) {
   BareRover rover = bare_rover(terrain_for(0), kTimestepS);
