@@ -26,7 +26,7 @@
 // while the unfiltered correction does not, and on flat ground the difference read as slope:
 // front-wheel walking in the simulator, the joint bending 1.3 rad in 3 s and pitching the centre
 // unit 0.10 rad, read σ from −0.06 to +0.11 rad, beyond the slant dead band (0.05), and the slant
-// response (6.4) moved the held rear joint from 1.21 to 1.50 rad every stroke. Filtered alike,
+// response (6.4) pushed the held rear joint out from 1.21 to 1.27–1.50 rad. Filtered alike,
 // the pitch and its correction cancel at every instant on flat ground (for small angles acos(g1)
 // − π/2 is the filtered pitch), and σ is the filtered slope: ā⁰ and c⁰ = 0 both start from flat
 // ground.
