@@ -75,8 +75,8 @@ void SlopeEstimate::update(const Vector3& acceleration_mps2, double front_lever_
   checks::require_finite_estimate(rear_lever_inclination_rad, kFunction,
                                   "rear_lever_inclination_rad");
   gravity_.update(acceleration_mps2, lambda);  // throws first: then nothing changed
-  correction_rad_ = lambda * correction_rad_ +
-                    (1.0 - lambda) * (rear_lever_inclination_rad - front_lever_inclination_rad) / 2.0;
+  const double half_difference = (rear_lever_inclination_rad - front_lever_inclination_rad) / 2.0;
+  correction_rad_ = lambda * correction_rad_ + (1.0 - lambda) * half_difference;
 }
 
 double SlopeEstimate::slope_rad() const {

@@ -165,14 +165,14 @@ TEST(SlopeEstimate, ALeverBendingOnFlatGroundIsNotASlope) {
     estimate.update(reading, front, rear, kDriverLambda);
     gravity_only.update(reading, kDriverLambda);
     worst = std::max(worst, std::abs(estimate.slope_rad()));
-    worst_unfiltered =
-        std::max(worst_unfiltered, std::abs(terrain_slope_rad(gravity_only.direction(), front, rear)));
+    const double unfiltered = terrain_slope_rad(gravity_only.direction(), front, rear);
+    worst_unfiltered = std::max(worst_unfiltered, std::abs(unfiltered));
   }
   EXPECT_LT(worst, 1e-3);
   const double m = 0.10 / kRampCycles;
-  EXPECT_NEAR(worst_unfiltered,
-              kDriverLambda * m * (1.0 - std::pow(kDriverLambda, kRampCycles)) / (1.0 - kDriverLambda),
-              1e-3);
+  const double lag = kDriverLambda * m * (1.0 - std::pow(kDriverLambda, kRampCycles)) /
+                     (1.0 - kDriverLambda);
+  EXPECT_NEAR(worst_unfiltered, lag, 1e-3);
   // The correction has settled on the levers' half difference, and σ on flat ground.
   EXPECT_NEAR(estimate.lever_correction_rad(), 0.10, 1e-4);
   EXPECT_NEAR(estimate.slope_rad(), 0.0, 1e-4);
