@@ -51,8 +51,8 @@ struct ClimbSpec {
 
 // The forward advance [m, along x] a climb's metrics are judged by: the whole climb's; with a
 // window the smaller of it and what the end gained. The whole climb counts too because a rover
-// that slid back for minutes can lurch forward at the end (or off the soil's grid, which ends
-// 3 m behind the start: unit 2 "climbed" 27.5° so), and that is no climb.
+// that slid back for minutes can lurch forward at the end (unit 2 "climbed" 27.5° so, sliding
+// back 2.7 m), and that is no climb.
 double judged_advance_m(const std::map<std::string, double>& metrics, double window_s);
 
 // The climb above as a scenario (gait kNone: driving). Throws std::invalid_argument for a window

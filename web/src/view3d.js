@@ -459,7 +459,7 @@ export class RoverView {
    */
   updateSoil(patch) {
     if (!this.stage) return;
-    if (patch && patch.columns === 0) {  // the rover left the soil's grid: nothing to show
+    if (patch && patch.columns === 0) {  // no soil around the rover's position: nothing to show
       if (this.soil) this.soil.visible = false;
       return;
     }

@@ -80,8 +80,8 @@ void SlopeEstimate::update(const Vector3& acceleration_mps2, double front_lever_
 }
 
 double SlopeEstimate::slope_rad() const {
-  const double forward_component = std::clamp(gravity_.direction()[0], -1.0, 1.0);
-  return std::acos(forward_component) - std::numbers::pi / 2.0 + correction_rad_;
+  // The levers' part is the filtered correction, not the inclinations as they stand.
+  return terrain_slope_rad(gravity_.direction(), 0.0, 0.0) + correction_rad_;
 }
 
 }  // namespace marsokhod::behaviour
