@@ -10,7 +10,8 @@
 // wheels' speed (F̂ ≈ 0.85–1.1), not at F̂ ≈ 2–3 as on Marsokhod (Figure 5.4). The procedure
 // refuses such a result (F̂ ≤ 1), and the test below expects that refusal on the simulator, so
 // that a change of the contact model that makes F̂ physical shows up here. On the soft sand of
-// sim/soil the rover digs in instead (OnSoftSandTheSpinDigsInAndStopsTurning).
+// sim/soil the exterior wheels run ahead with the inclined blades and hardly without them
+// (OnSoftSandTheBladesLetTheExteriorWheelsRunAheadAtThePeak).
 //
 // The spin runs on the batteries: the laboratory supply's 6 A limit browns the onboard computer
 // out under six wheels spinning at d = 0.8.
@@ -19,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "calibration/joints.hpp"
@@ -127,18 +129,15 @@ TEST(SpinCalibration, ThePeakFromTheGyroIsTheTruePeakAndTheSweepIsDeterministic)
   EXPECT_EQ(points[0].tau, points[1].tau);
 }
 
-// Procedure 5.1 on the soft sand of sim/soil (Wong's dry sand, `--ground sand`): the rover
-// turns at first about as on hard ground — the turning rate peaks early in the sweep (τ ≈ 0.2–0.4)
-// with the exterior wheels at about the center ones' speed — but it does not keep turning as the
-// exterior wheels speed up: each wheel's thrust saturates near 0.24 of its load
-// (docs/simulator.md), all six wheels slip almost fully, their blades carry soil out of the ruts
-// and the wheels dig themselves in (2 cm within the 6 s sweep), and the turning rate falls off
-// with jerks where a wheel frees itself: over the last third of the sweep it is about half the
-// hard ground's. On hard ground the rover keeps turning to the end of the sweep and does not sink.
-// (In the whole procedure the rover is set down from the stand on raked sand each time; below.)
-// The soil's parameters are Wong's table's; the thesis ran Procedure 5.1 on two indoor grounds
+// Procedure 5.1 on the soft sand of sim/soil (Wong's dry sand, `--ground sand`): the rover turns
+// through the 6 s sweep, over its last third a little slower than on hard ground (unit 6: 0.141
+// against 0.162 rad/s; each wheel's thrust saturates near 0.24 of its load, docs/simulator.md),
+// and its wheels slip and sink into the sand (1.8 cm) where on hard ground they do not. (Until
+// 2026-11-29 a chatter of the still wheels' soil contact, soft_soil.cpp's exit_touch_m, dug the
+// wheels in and held the late turning rate to half the hard ground's: 0.08 against 0.16.) The
+// soil's parameters are Wong's table's; the thesis ran Procedure 5.1 on two indoor grounds
 // (Figure 5.1), not on loose sand.
-TEST(SpinCalibration, OnSoftSandTheSpinDigsInAndStopsTurning) {
+TEST(SpinCalibration, OnSoftSandTheSpinTurnsSlowerAndSinks) {
   const Params params = config();
   struct Spin {
     double late_turn_rate_radps = 0.0;  // mean |ω3| over the last third of the sweep
@@ -168,21 +167,22 @@ TEST(SpinCalibration, OnSoftSandTheSpinDigsInAndStopsTurning) {
   const Spin hard = spin_on(sim::hard_ground());
   const Spin soft = spin_on(sim::sand());
   EXPECT_GT(hard.late_turn_rate_radps, 0.08);
-  EXPECT_LT(soft.late_turn_rate_radps, 0.75 * hard.late_turn_rate_radps);  // seed 6: 0.08, 0.16
+  EXPECT_LT(soft.late_turn_rate_radps, hard.late_turn_rate_radps);
+  EXPECT_GT(soft.late_turn_rate_radps, 0.5 * hard.late_turn_rate_radps);  // it does not dig in
   EXPECT_LT(std::abs(hard.wheels_sank_m), 0.005);
-  EXPECT_GT(soft.wheels_sank_m, 0.015);
+  EXPECT_GT(soft.wheels_sank_m, 0.01);
 }
 
 // Procedure 5.1's sweep at c = 0.46 m on soft sand, as the procedure runs it (the joints set on
 // the stand, the rover set down on the raked sand), on unit 1: at the peak turning rate the
-// exterior wheels run ahead of the center ones, as Marsokhod's did (F̂ > 1; the thesis' 5.3c +
-// 0.04 = 2.5 there, here 1.33) — and as much with blades across the axle (i = 0, the control
-// case; 1.34): what lets the exterior wheels run ahead is that a wheel spinning faster resists
-// being dragged sideways less (WheelSoil.SpinningFasterLowersTheLateralResistance), blades or
-// not. F̂ scatters with the rover's history: in the whole procedure, after two sweeps, this
-// sweep gives 4.91 and 2.64; over units 1–3 the procedure's F̂ lie within 1.0–4.9 with blades and
-// 0.8–3.2 without, too scattered about a line to be written (docs/calibration.md).
-TEST(SpinCalibration, OnSoftSandTheExteriorWheelsRunAheadAtThePeakWithOrWithoutBlades) {
+// exterior wheels run ahead of the center ones with the inclined blades (F̂ = 1.19; the thesis'
+// 5.3c + 0.04 = 2.5 there), and hardly without them (i = 0, the control case: 1.07). The whole
+// procedure writes F(c) = 1.96c + 0.34 on unit 1 and 1.55c + 0.51 on unit 2, and refuses on
+// unit 3, where F̂ falls to 0.87 at c = 0.53 m; without blades it refuses on units 1 and 3, F̂
+// 0.96–1.08 on unit 3 (docs/calibration.md). (Until a chatter of the still wheels' soil contact
+// was mended, 2026-11-29, this sweep gave 1.33 and 1.34: as much without blades.)
+TEST(SpinCalibration, OnSoftSandTheBladesLetTheExteriorWheelsRunAheadAtThePeak) {
+  std::array<double, 2> ratio{};
   for (const double inclination : {0.240, 0.0}) {
     SCOPED_TRACE(inclination);
     Params params = config();
@@ -204,10 +204,12 @@ TEST(SpinCalibration, OnSoftSandTheExteriorWheelsRunAheadAtThePeakWithOrWithoutB
     std::vector<std::string> problems;
     const SpinPoint point = spin_point(run_spin_sweep(bench, c, 10.0), SpinLimits{}, problems);
     EXPECT_TRUE(problems.empty()) << first(problems);
-    EXPECT_GT(point.ratio, 1.2);
-    EXPECT_LT(point.ratio, 4.0);
     EXPECT_GT(point.turn_rate_radps, 0.2);
+    ratio[inclination > 0.0 ? 0 : 1] = point.ratio;
   }
+  EXPECT_GT(ratio[0], 1.1);                // ahead with the blades
+  EXPECT_NEAR(ratio[1], 1.0, 0.1);         // about even without
+  EXPECT_GT(ratio[0] - ratio[1], 0.05);
 }
 
 // The gyro's null rate is taken in a 1 s rest before each sweep; a rover still moving then

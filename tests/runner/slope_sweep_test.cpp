@@ -110,20 +110,22 @@ TEST(SlopeSweep, AWindowedClimbMustAlsoHaveGainedOverTheWhole) {
   EXPECT_DOUBLE_EQ(judged_advance_m(dug_in, 0.0), 1.2);
 }
 
-// Driving up 10° of the soil model's sand digs the rover in (docs/simulator.md, longer climbs):
-// in its first two minutes it gains more than a metre, so by the whole climb it climbed; by the
-// window at the end, where it has stopped, it did not (one run read both ways).
-TEST(SlopeSweep, DrivingUpTenDegreesOfSandClimbsFirstAndDigsItselfIn) {
+// Driving up 16° of the soil model's sand digs the rover in (docs/simulator.md, longer climbs):
+// in its first two minutes it gains 0.76 m, so by the whole climb it climbed; by the window at the
+// end, where it has stopped, it did not (one run read both ways). On 10° it now keeps climbing
+// (1.5 m, 0.15 m in the last 20 s); it dug itself in there too until a chatter of the still
+// wheels' soil contact was mended on 2026-11-29.
+TEST(SlopeSweep, DrivingUpSixteenDegreesOfSandClimbsFirstAndDigsItselfIn) {
   ClimbSpec spec;
   spec.ground = sim::sand();
   spec.time_s = 120.0;
   spec.window_s = 20.0;
   RunOptions options;
   options.plots = false;
-  const ScenarioResult r = run_scenario(slope_climb_scenario(mobility::Gait::kNone, 10.0, spec),
+  const ScenarioResult r = run_scenario(slope_climb_scenario(mobility::Gait::kNone, 16.0, spec),
                                         testing::shipped_params(), options);
-  const double along = 1.0 / std::cos(10.0 * std::numbers::pi / 180.0);
-  EXPECT_GT(r.metrics.at("climb.forward_distance_m") * along, 1.0);
+  const double along = 1.0 / std::cos(16.0 * std::numbers::pi / 180.0);
+  EXPECT_GT(r.metrics.at("climb.forward_distance_m") * along, 0.5);
   EXPECT_LT((r.metrics.at("last.mean_forward_m") - r.metrics.at("before.mean_forward_m")) * along,
             0.05);
 }

@@ -13,9 +13,22 @@ namespace {
 // Repose relaxation around a wheel: this many cells beyond its box, at most this many passes.
 constexpr int kRelaxMarginCells = 3;
 constexpr int kRelaxPasses = 4;
-// The exit angle's search: steps over [−θ1, 0], and how far above its bowl a rim still touches.
+// The exit angle's search: steps over [−θ1, 0], and how far above its bowl a rim still touches at
+// least (exit_touch_m below).
 constexpr int kExitSteps = 16;
 constexpr double kTouchM = 1e-4;
+
+// How far above the soil behind its bottom a rim still touches it. The grid holds a bowl only at
+// its cells' centres; between them its bilinear surface parts from the rim's circle by up to the
+// sagitta of a cell's diagonal, (√2·cell)²/(8r) = cell²/(4r): 0.87 mm for 2 cm cells under the
+// 0.115 m rim. A still wheel in the bowl it pressed touches it all round (θ2 = −θ1); with a
+// tolerance below the sagitta (0.1 mm, before 2026-11-29) the search met the first cell's dip at
+// once, the arc lay wholly ahead in whichever direction the wheel crept, and its pressure pushed
+// back at each reversal: a standing centre wheel met ±0.37 of its load, a 150 Hz chatter that
+// read ±2.2 m/s² on the rover's accelerometer (docs/simulator.md).
+double exit_touch_m(double cell_m, double radius_m) {
+  return std::max(kTouchM, cell_m * cell_m / (4.0 * radius_m));
+}
 
 // The wheel's rolling direction along the ground (axle × normal, unit; +x of its motion frame
 // before the direction it rolls in is applied).
@@ -71,8 +84,9 @@ double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, con
     return rim[2] - grid_.surface_m(rim[0], rim[1]);
   };
   const double bottom = std::max(height(0.0, 1.0), 0.0);
+  const double touch = exit_touch_m(grid_.spec().cell_m, radius_m);
   const auto clearance = [&](double sin_theta, double cos_theta) {
-    return height(sin_theta, cos_theta) - bottom - kTouchM;
+    return height(sin_theta, cos_theta) - bottom - touch;
   };
   double previous_theta = 0.0, previous = clearance(0.0, 1.0);
   AngleSteps angle = AngleSteps::multiples(-entry / kExitSteps);
