@@ -170,7 +170,7 @@ TEST(SpinCalibration, OnSoftSandTheSpinTurnsSlowerAndSinks) {
   EXPECT_LT(soft.late_turn_rate_radps, hard.late_turn_rate_radps);
   EXPECT_GT(soft.late_turn_rate_radps, 0.5 * hard.late_turn_rate_radps);  // it does not dig in
   EXPECT_LT(std::abs(hard.wheels_sank_m), 0.005);
-  EXPECT_GT(soft.wheels_sank_m, 0.01);
+  EXPECT_GT(soft.wheels_sank_m, 0.015);
 }
 
 // Procedure 5.1's sweep at c = 0.46 m on soft sand, as the procedure runs it (the joints set on
@@ -207,8 +207,8 @@ TEST(SpinCalibration, OnSoftSandTheBladesLetTheExteriorWheelsRunAheadAtThePeak) 
     EXPECT_GT(point.turn_rate_radps, 0.2);
     ratio[inclination > 0.0 ? 0 : 1] = point.ratio;
   }
-  EXPECT_GT(ratio[0], 1.1);                // ahead with the blades
-  EXPECT_NEAR(ratio[1], 1.0, 0.1);         // about even without
+  EXPECT_GT(ratio[0], 1.1);         // ahead with the blades
+  EXPECT_NEAR(ratio[1], 1.0, 0.1);  // about even without
   EXPECT_GT(ratio[0] - ratio[1], 0.05);
 }
 

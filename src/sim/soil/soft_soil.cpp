@@ -25,7 +25,7 @@ constexpr double kTouchM = 1e-4;
 // tolerance below the sagitta (0.1 mm, before 2026-11-29) the search met the first cell's dip at
 // once, the arc lay wholly ahead in whichever direction the wheel crept, and its pressure pushed
 // back at each reversal: a standing centre wheel met ±0.37 of its load, a 150 Hz chatter that
-// read ±2.2 m/s² on the rover's accelerometer (docs/simulator.md).
+// read 2.2 m/s² rms on the rover's accelerometer (docs/simulator.md).
 double exit_touch_m(double cell_m, double radius_m) {
   return std::max(kTouchM, cell_m * cell_m / (4.0 * radius_m));
 }

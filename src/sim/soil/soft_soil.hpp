@@ -7,10 +7,10 @@
 // the wheel's own, nearest the normal) below the undisturbed level, along the normal — less
 // unloading_stiffness_ratio times the gap where the rim has risen above the soil it pressed; its
 // exit angle θ2 is the furthest angle behind the bottom (down to −θ1, searched in steps of θ1/16
-// and interpolated) at which the rim is no higher above the soil than at its bottom (+ the sagitta of a cell's
-// diagonal on the rim, cell²/(4r), 0.87 mm: what the grid cannot resolve of a bowl): about 0.12 rad
-// behind a rolling wheel, −θ1 under one that sank in place. The contact gives the
-// wrench. When the grid yields (below), again in wheel order: press (plastic sinkage, soil to the
+// and interpolated) at which the rim is no higher above the soil than at its bottom, within the
+// sagitta of a cell's diagonal on the rim (cell²/(4r), 0.87 mm: what the grid cannot resolve of a
+// bowl): about −0.12 rad behind a rolling wheel, −θ1 under one that sank in place. The contact
+// gives the wrench. When the grid yields (below), again in wheel order: press (plastic sinkage, soil to the
 // patch's rim), excavation, relaxation to the angle of repose over the patch and where the spoil
 // landed, 3 cells around their box.
 //

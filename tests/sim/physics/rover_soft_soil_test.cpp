@@ -54,7 +54,7 @@ void raise_soil(RoverPhysics& physics, Inside inside, double level_m) {
 // Standing unpowered on soft sand the rover sinks in — the centre wheels, under the centre unit's
 // 30 kg, deepest: 1–3 cm below the 0.115 m rim (the blades' 1 cm more) — and stays put: the soil
 // holds it without a push along the ground. At rest its accelerometer reads gravity: within
-// 0.2 m/s² rms over a second (it read ±2.2 m/s² along x1 while a standing wheel's arc turned with
+// 0.2 m/s² rms over a second (it read 2.2 m/s² rms along x1 while a standing wheel's arc turned with
 // every creep of a millimetre a second, soft_soil.cpp's exit_touch_m).
 TEST(RoverSoftSoil, StandsOnSoftSandAndSinksIn) {
   RoverPhysics soft(Params{}, soft_flat());
@@ -67,7 +67,9 @@ TEST(RoverSoftSoil, StandsOnSoftSandAndSinksIn) {
     const std::array<double, 3> off{a[0], a[1], a[2] + Params{}.sensors.gravity_mps2};  // −z: (3.5)
     for (std::size_t k = 0; k < 3; ++k) square_sum[k] += off[k] * off[k];
   }
-  for (std::size_t k = 0; k < 3; ++k) EXPECT_LT(std::sqrt(square_sum[k] / 1000.0), 0.2) << "axis " << k;
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_LT(std::sqrt(square_sum[k] / 1000.0), 0.2) << "axis " << k;
+  }
   const GroundTruth end = soft.truth();
   expect_healthy(soft);
   for (std::size_t wheel : {kCenterLeft, kCenterRight}) {

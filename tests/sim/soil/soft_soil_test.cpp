@@ -69,7 +69,7 @@ TEST(SoftSoil, StandingWheelSettlesAtBekkersStaticSinkage) {
 // the rim by up to cell²/(4r) = 0.87 mm there. With a touch tolerance of 0.1 mm the search found
 // the rim clear of the soil just behind the bottom, the whole arc lay ahead and its pressure
 // pushed the wheel back at each reversal: 0.08 of its load here (11 N), 0.37 under the rover's
-// centre wheels, 3.9 cm deep, where it made a chatter the accelerometer read as ±2.2 m/s²
+// centre wheels, 3.9 cm deep, where it made a chatter the accelerometer read as 2.2 m/s² rms
 // (rover_soft_soil_test).
 TEST(SoftSoil, AStillWheelInItsBowlTouchesItAllRound) {
   SoftSoil soil(dry_sand(), {-1.0, -0.3, 0.02, 100, 30}, [](double, double) { return 0.0; },
@@ -78,7 +78,8 @@ TEST(SoftSoil, AStillWheelInItsBowlTouchesItAllRound) {
   double z = 0.115, vz = 0.0;
   for (int i = 0; i < 2000; ++i) {  // set down: the vertical rig's damper, no travel
     const WheelKinematics wheel{{x, 0.0, z}, {0.0, 1.0, 0.0}, {0.0, 0.0, vz}, 0.0};
-    const double force = soil.step({&wheel, 1}, kDt)[0].force_n[2] - kWheelMassKg * 9.81 - 300.0 * vz;
+    const double force =
+        soil.step({&wheel, 1}, kDt)[0].force_n[2] - kWheelMassKg * 9.81 - 300.0 * vz;
     vz += force / kWheelMassKg * kDt;
     z += vz * kDt;
   }
