@@ -10,9 +10,9 @@
 // and interpolated) at which the rim is no higher above the soil than at its bottom, within the
 // sagitta of a cell's diagonal on the rim (cell²/(4r), 0.87 mm: what the grid cannot resolve of a
 // bowl): about −0.12 rad behind a rolling wheel, −θ1 under one that sank in place. The contact
-// gives the wrench. When the grid yields (below), again in wheel order: press (plastic sinkage, soil to the
-// patch's rim), excavation, relaxation to the angle of repose over the patch and where the spoil
-// landed, 3 cells around their box.
+// gives the wrench. When the grid yields (below), again in wheel order: press (plastic sinkage,
+// soil to the patch's rim), excavation, relaxation to the angle of repose over the patch and
+// where the spoil landed, 3 cells around their box.
 //
 // Excavation: a blade groove of height h across the width b carries the soil it fills; rolling
 // without slip it lays it down where it took it, so only the slip's share leaves the rut:
