@@ -57,7 +57,9 @@ SoftSoil::SoftSoil(SoilParams soil, GridSpec grid,
   }
   lane_sinkage_.resize(lanes);
   lane_exit_.resize(lanes);
+  lane_front_.resize(lanes);
   excavation_m3_.assign(wheels.size(), 0.0);
+  slip_play_.assign(wheels.size(), SlipPlay{});
 }
 
 void SoftSoil::level() {
@@ -65,6 +67,7 @@ void SoftSoil::level() {
   since_yield_s_ = 0.0;
   yielded_ = false;
   std::fill(excavation_m3_.begin(), excavation_m3_.end(), 0.0);
+  std::fill(slip_play_.begin(), slip_play_.end(), SlipPlay{});
   for (WheelSoilContact& contact : contacts_) contact = WheelSoilContact(soil_, contact.wheel());
 }
 
@@ -73,25 +76,34 @@ Vec3 SoftSoil::ground_normal(const WheelKinematics& kinematics, std::size_t whee
                       2.0 * contacts_.at(wheel).wheel().rim_radius_m);
 }
 
-// θ2: stepping back from the bottom, where the rim rises above the soil further than it is above it
-// at the bottom (a rim resting in its rebound touches its whole bowl), interpolated between the
-// steps so that it moves continuously with the wheel.
-double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
-                                double radius_m, double sinkage_m) const {
-  const double entry = std::acos(1.0 - std::clamp(sinkage_m, 0.0, radius_m) / radius_m);
-  const auto height = [&](double sin_theta, double cos_theta) {  // of the rim above the soil
-    const Vec3 rim = axis_point + (radius_m * sin_theta) * forward - (radius_m * cos_theta) * up;
-    return rim[2] - grid_.surface_m(rim[0], rim[1]);
-  };
-  const double bottom = std::max(height(0.0, 1.0), 0.0);
-  const double touch = exit_touch_m(grid_.spec().cell_m, radius_m);
-  const auto clearance = [&](double sin_theta, double cos_theta) {
-    return height(sin_theta, cos_theta) - bottom - touch;
-  };
+namespace {
+
+// Of the rim at angle θ toward `side` from its bottom: how far it lies above the soil, less
+// what it lies above it at the bottom and the touch tolerance (> 0: clear of the soil).
+struct RimClearance {
+  const SoilGrid& grid;
+  Vec3 axis_point, side, up;
+  double radius_m, bottom_m, touch_m;
+
+  double height(double sin_theta, double cos_theta) const {
+    const Vec3 rim = axis_point + (radius_m * sin_theta) * side - (radius_m * cos_theta) * up;
+    return rim[2] - grid.surface_m(rim[0], rim[1]);
+  }
+  double operator()(double sin_theta, double cos_theta) const {
+    return height(sin_theta, cos_theta) - bottom_m - touch_m;
+  }
+};
+
+// Stepping out from the bottom toward clearance.side, the angle in [0, θ1] where the rim first
+// rises above the soil further than it is above it at the bottom (a rim resting in its rebound
+// touches its whole bowl), interpolated between the steps so that it moves continuously with the
+// wheel; θ1 if it never does.
+double clearing_angle_rad(RimClearance clearance, double entry_rad) {
+  clearance.bottom_m = std::max(clearance.height(0.0, 1.0), 0.0);
   double previous_theta = 0.0, previous = clearance(0.0, 1.0);
-  AngleSteps angle = AngleSteps::multiples(-entry / kExitSteps);
+  AngleSteps angle = AngleSteps::multiples(entry_rad / kExitSteps);
   for (int k = 1; k <= kExitSteps; ++k, angle.advance()) {
-    const double theta = -entry * k / kExitSteps;
+    const double theta = entry_rad * k / kExitSteps;
     const double current = clearance(angle.sin(), angle.cos());
     if (current > 0.0) {
       return previous_theta + (theta - previous_theta) * (-previous) / (current - previous);
@@ -99,17 +111,44 @@ double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, con
     previous_theta = theta;
     previous = current;
   }
-  return -entry;
+  return entry_rad;
+}
+
+}  // namespace
+
+// θ2: the clearing angle behind the wheel, negative.
+double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
+                                double radius_m, double sinkage_m) const {
+  const double entry = std::acos(1.0 - std::clamp(sinkage_m, 0.0, radius_m) / radius_m);
+  const RimClearance clearance{grid_,    axis_point, -1.0 * forward, up, radius_m, 0.0,
+                               exit_touch_m(grid_.spec().cell_m, radius_m)};
+  return -clearing_angle_rad(clearance, entry);
+}
+
+// θf: the clearing angle ahead of the wheel. Rolling into fresh soil the rim at θ1 lies in it (θ1
+// is where the undisturbed level meets the rim), and that one look settles it.
+double SoftSoil::front_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
+                                 double radius_m, double sinkage_m) const {
+  const double entry = std::acos(1.0 - std::clamp(sinkage_m, 0.0, radius_m) / radius_m);
+  const Vec3 lowest = axis_point - radius_m * up;
+  const double rebound = grid_.touch_tolerance_m(lowest[0], lowest[1]);
+  RimClearance clearance{grid_,    axis_point, forward, up, radius_m, 0.0,
+                         std::max(rebound, exit_touch_m(grid_.spec().cell_m, radius_m))};
+  clearance.bottom_m = std::max(clearance.height(0.0, 1.0), 0.0);
+  if (clearance(std::sin(entry), std::cos(entry)) <= 0.0) return entry;
+  return clearing_angle_rad(clearance, entry);
 }
 
 // Lane sinkages and (unless exit_rad is empty) exit angles into the spans, one per lane; the
 // number of lanes in contact.
 int SoftSoil::find_lane_contacts(std::size_t wheel, const WheelKinematics& kinematics,
                                  const Vec3& normal, std::span<double> sinkage_m,
-                                 std::span<double> exit_rad) const {
+                                 std::span<double> exit_rad,
+                                 std::span<double> front_rad) const {
   const WheelSoilContact& contact = contacts_.at(wheel);
   std::fill(sinkage_m.begin(), sinkage_m.end(), 0.0);
   std::fill(exit_rad.begin(), exit_rad.end(), 0.0);
+  std::fill(front_rad.begin(), front_rad.end(), 0.0);
   const Vec3 rolling = cross(kinematics.axle, normal);
   if (norm(rolling) < 1e-9) return 0;
   const Vec3 forward = (static_cast<double>(contact.direction()) / norm(rolling)) * rolling;
@@ -130,6 +169,9 @@ int SoftSoil::find_lane_contacts(std::size_t wheel, const WheelKinematics& kinem
       if (!exit_rad.empty()) {
         exit_rad[lane] = exit_angle_rad(axis_point, forward, up, radius, sinkage_m[lane]);
       }
+      if (!front_rad.empty()) {
+        front_rad[lane] = front_angle_rad(axis_point, forward, up, radius, sinkage_m[lane]);
+      }
       ++touching;
     }
   }
@@ -139,9 +181,10 @@ int SoftSoil::find_lane_contacts(std::size_t wheel, const WheelKinematics& kinem
 SoftSoil::LaneContacts SoftSoil::lane_contacts(std::size_t wheel,
                                                const WheelKinematics& kinematics) const {
   const auto lanes = static_cast<std::size_t>(contacts_.at(wheel).wheel().lanes);
-  LaneContacts result{std::vector<double>(lanes, 0.0), std::vector<double>(lanes, 0.0)};
+  LaneContacts result{std::vector<double>(lanes, 0.0), std::vector<double>(lanes, 0.0),
+                      std::vector<double>(lanes, 0.0)};
   find_lane_contacts(wheel, kinematics, ground_normal(kinematics, wheel), result.sinkage_m,
-                     result.exit_rad);
+                     result.exit_rad, result.front_rad);
   return result;
 }
 
@@ -158,12 +201,12 @@ std::vector<WheelWrench> SoftSoil::step(std::span<const WheelKinematics> wheels,
     const auto lanes = static_cast<std::size_t>(contacts_[i].wheel().lanes);
     const std::span<double> sinkage(lane_sinkage_.data(), lanes);
     const std::span<double> exit(lane_exit_.data(), lanes);
+    const std::span<double> front(lane_front_.data(), lanes);
     const Vec3 normal = ground_normal(wheels[i], i);
-    const int touching = find_lane_contacts(i, wheels[i], normal, sinkage, exit);
-    wrenches.push_back(contacts_[i].step(wheels[i], normal, sinkage, exit, dt_s));
-    if (wrenches.back().diagnostics.in_contact) {
-      excavation_m3_[i] += excavation_rate_m3ps(i, wheels[i], normal, touching) * dt_s;
-    }
+    const int touching = find_lane_contacts(i, wheels[i], normal, sinkage, exit, front);
+    wrenches.push_back(contacts_[i].step(wheels[i], normal, sinkage, exit, front, dt_s));
+    excavation_m3_[i] += carried_out_m3(i, wheels[i], normal,
+                                        wrenches.back().diagnostics.in_contact ? touching : 0, dt_s);
   }
   since_yield_s_ += dt_s;
   yielded_ = since_yield_s_ + 0.5 * dt_s >= yield_period_s_;
@@ -177,18 +220,29 @@ std::vector<WheelWrench> SoftSoil::step(std::span<const WheelKinematics> wheels,
   return wrenches;
 }
 
-// The soil the blades carry out of the rut per second: f_e · b · h · max(0, r_s ω − v) · (lanes in
-// contact / lanes), v along the rolling direction.
-double SoftSoil::excavation_rate_m3ps(std::size_t wheel, const WheelKinematics& kinematics,
-                                      const Vec3& normal, int touching_lanes) const {
+// The soil the blades carried out of the rut this step: f_e · b · h · Δc · (lanes in contact /
+// lanes), c the slip r_s ω − v (v along the rolling direction) through a play of width K: the
+// grooves carry soil out only as the rim slips on past the soil, not while it works to and fro
+// within the soil's elastic shear (a wheel rocking in its rut carries nothing out).
+double SoftSoil::carried_out_m3(std::size_t wheel, const WheelKinematics& kinematics,
+                                const Vec3& normal, int touching_lanes, double dt_s) {
   const WheelGeometry& geometry = contacts_[wheel].wheel();
-  if (!geometry.bladed || touching_lanes == 0) return 0.0;
+  SlipPlay& play = slip_play_[wheel];
+  const int direction = contacts_[wheel].direction();
+  if (!geometry.bladed || touching_lanes == 0 || direction != play.direction) {
+    play = SlipPlay{direction, 0.0, 0.0};
+    if (!geometry.bladed || touching_lanes == 0) return 0.0;
+  }
   const Vec3 forward = rolling_forward(kinematics, normal);
-  const double direction = contacts_[wheel].direction();
   const double slip_speed = direction * (geometry.shear_radius_m() * kinematics.spin_radps -
                                          dot(kinematics.velocity_mps, forward));
-  return soil_.excavation_fraction * geometry.width_m * geometry.blade_height_m *
-         std::max(slip_speed, 0.0) * touching_lanes / geometry.lanes;
+  play.slip_m += slip_speed * dt_s;
+  const double carried =
+      std::clamp(play.carried_m, play.slip_m - soil_.shear_modulus_m, play.slip_m);
+  const double advance = std::max(carried - play.carried_m, 0.0);
+  play.carried_m = carried;
+  return soil_.excavation_fraction * geometry.width_m * geometry.blade_height_m * advance *
+         touching_lanes / geometry.lanes;
 }
 
 // The grid yields under the wheel as it stands: its press, then the excavation of the soil its

@@ -9,16 +9,22 @@
 // exit angle θ2 is the furthest angle behind the bottom (down to −θ1, searched in steps of θ1/16
 // and interpolated) at which the rim is no higher above the soil than at its bottom, within the
 // sagitta of a cell's diagonal on the rim (cell²/(4r), 0.87 mm: what the grid cannot resolve of a
-// bowl): about −0.12 rad behind a rolling wheel, −θ1 under one that sank in place. The contact
-// gives the wrench. When the grid yields (below), again in wheel order: press (plastic sinkage,
+// bowl): about −0.12 rad behind a rolling wheel, −θ1 under one that sank in place. Its front
+// angle θf is found the same way ahead of the bottom (up to θ1), within the soil's elastic rebound
+// at the bottom (its plastic sinkage / unloading_stiffness_ratio, the grid's contact rule) or the
+// sagitta, whichever is larger: θ1 in fresh soil (the rim's point at θ1 lies in it, one look),
+// less where the soil ahead lies lower, a rut the wheel rolls into. The contact gives the wrench. When the grid yields (below), again in wheel order: press (plastic sinkage,
 // soil to the patch's rim), excavation, relaxation to the angle of repose over the patch and
 // where the spoil landed, 3 cells around their box.
 //
 // Excavation: a blade groove of height h across the width b carries the soil it fills; rolling
 // without slip it lays it down where it took it, so only the slip's share leaves the rut:
-//   V = f_e · b · h · max(0, r_s ω − v) · dt · (lanes in contact / lanes),
-// summed step by step, dropped one cell behind the rim, against the direction of motion, at the
-// yield. (A wheel that has left the soil by then, its press touching no cell, takes nothing: the
+//   V = f_e · b · h · Δc · (lanes in contact / lanes),
+// c the slip ∫(r_s ω − v) dt through a play of width K (c follows the slip once it has run K
+// ahead of it, and stays while the slip runs back): the grooves carry soil out only as the rim
+// slips on past the soil, not while it works to and fro within the soil's elastic shear. The play
+// starts again when the wheel leaves the soil or its frame turns. Summed step by step, dropped
+// one cell behind the rim, against the direction of motion, at the yield. (A wheel that has left the soil by then, its press touching no cell, takes nothing: the
 // sum is dropped with the soil left in place, the books balanced.)
 //
 // The wheels' forces are worked out every step; the grid yields (press, excavation, repose) once
@@ -55,7 +61,7 @@ class SoftSoil {
 
   // The lane sinkages and exit angles step() would use for one wheel, and the normal it uses.
   struct LaneContacts {
-    std::vector<double> sinkage_m, exit_rad;
+    std::vector<double> sinkage_m, exit_rad, front_rad;
   };
   LaneContacts lane_contacts(std::size_t wheel, const WheelKinematics& kinematics) const;
   Vec3 ground_normal(const WheelKinematics& kinematics, std::size_t wheel) const;
@@ -71,20 +77,30 @@ class SoftSoil {
  private:
   double exit_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
                         double radius_m, double sinkage_m) const;
+  double front_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
+                         double radius_m, double sinkage_m) const;
   int find_lane_contacts(std::size_t wheel, const WheelKinematics& kinematics, const Vec3& normal,
-                         std::span<double> sinkage_m, std::span<double> exit_rad) const;
-  double excavation_rate_m3ps(std::size_t wheel, const WheelKinematics& kinematics,
-                              const Vec3& normal, int touching_lanes) const;
+                         std::span<double> sinkage_m, std::span<double> exit_rad,
+                         std::span<double> front_rad) const;
+  double carried_out_m3(std::size_t wheel, const WheelKinematics& kinematics, const Vec3& normal,
+                        int touching_lanes, double dt_s);
   void deform(std::size_t wheel, const WheelKinematics& kinematics, double excavated_m3);
 
   SoilParams soil_;
   SoilGrid grid_;
   std::vector<WheelSoilContact> contacts_;
-  std::vector<double> lane_sinkage_, lane_exit_;
+  std::vector<double> lane_sinkage_, lane_exit_, lane_front_;
   double yield_period_s_;
   double since_yield_s_ = 0.0;
   bool yielded_ = false;
   std::vector<double> excavation_m3_;  // per wheel, summed since the last yield
+  // Per wheel: its slip along its motion frame since it last touched or turned (slip_m), and the
+  // play's output, the slip the blades have carried soil out over (carried_m ∈ [slip − K, slip]).
+  struct SlipPlay {
+    int direction = 1;
+    double slip_m = 0.0, carried_m = 0.0;
+  };
+  std::vector<SlipPlay> slip_play_;
   Footprint footprint_;  // reused: its cell list keeps its capacity
 };
 

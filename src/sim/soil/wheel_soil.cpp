@@ -4,6 +4,7 @@
 #include <optional>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -12,13 +13,23 @@
 namespace marsokhod::sim::soil {
 namespace {
 
-// A reversal of the rolling direction slower than this keeps the current frame (no chatter at
-// rest).
-constexpr double kReversalSpeedMps = 1e-3;
 
 double mobilised(double displacement_m, double shear_modulus_m) {
   const double share = 1.0 - std::exp(-std::abs(displacement_m) / shear_modulus_m);
   return displacement_m < 0.0 ? -share : share;
+}
+
+// One step of shear displacement dj on soil displaced j. Loading (dj along j, or from j = 0) follows
+// Janosi–Hanamoto's curve; unloading (dj against j) is stiffer, ratio/K in the mobilised share per
+// metre, until the share reaches 0, and the rest of the step loads the other way.
+double sheared(double j, double dj, double inverse_K, double ratio) {
+  if (dj == 0.0 || j == 0.0 || (j > 0.0) == (dj > 0.0)) return j + dj;
+  const double remaining = exp_nonpositive(-std::abs(j) * inverse_K);  // 1 − share
+  const double unload = (1.0 - remaining) / (ratio * inverse_K);
+  const double d = std::abs(dj);
+  if (d >= unload) return std::copysign(d - unload, dj);
+  const double a = -std::log(remaining + ratio * d * inverse_K) / inverse_K;
+  return std::copysign(a, j);
 }
 
 }  // namespace
@@ -54,11 +65,13 @@ double WheelSoilContact::lane_offset_m(int lane) const {
   return ((lane + 0.5) / wheel_.lanes - 0.5) * wheel_.width_m;
 }
 
-void WheelSoilContact::update_direction(double rim_speed_mps, double travel_speed_mps) {
-  const double lead = rim_speed_mps + travel_speed_mps;
-  const int wanted = lead > 0.0 ? 1 : -1;
-  if (wanted == direction_ || std::abs(lead) < kReversalSpeedMps) return;
-  direction_ = wanted;
+void WheelSoilContact::update_direction(double rim_speed_mps, double travel_speed_mps,
+                                        double dt_s) {
+  const double lead = direction_ * (rim_speed_mps + travel_speed_mps) * dt_s;
+  retreat_m_ = std::max(retreat_m_ - lead, 0.0);
+  if (retreat_m_ <= soil_.shear_modulus_m) return;
+  direction_ = -direction_;
+  retreat_m_ = 0.0;
   const int samples = wheel_.arc_samples;
   for (int lane = 0; lane < wheel_.lanes; ++lane) {
     double* jt = shear_t_.data() + lane * samples;
@@ -73,7 +86,7 @@ void WheelSoilContact::update_direction(double rim_speed_mps, double travel_spee
 void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_radps,
                                    double travel_mps, double lateral_mps, double dt_s) {
   const int samples = wheel_.arc_samples;
-  const double span = arc.entry_rad - arc.exit_rad;
+  const double span = arc.front_rad - arc.exit_rad;
   const double shift = std::max(spin_radps, 0.0) * dt_s / span * samples;  // in samples
   const double rs = wheel_.shear_radius_m();
   const double spacing = 1.0 / samples;
@@ -85,15 +98,15 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
   const double reach = std::max(shift, 1.0);
   const int near = std::clamp(static_cast<int>(std::ceil(reach - 0.5)), 0, samples);
   if (near == 1) {  // the usual case, one sample: its cosine alone
-    cosines_[0] = sin_cos(arc.entry_rad - 0.25 * spacing * span).cos;
+    cosines_[0] = sin_cos(arc.front_rad - 0.25 * spacing * span).cos;
   } else if (near > 1) {
-    AngleSteps angle(arc.entry_rad - 0.25 * spacing * span, -0.5 * spacing * span);
+    AngleSteps angle(arc.front_rad - 0.25 * spacing * span, -0.5 * spacing * span);
     for (int k = 0; k < near; ++k, angle.advance()) {
       cosines_[static_cast<std::size_t>(k)] = angle.cos();
     }
   }
   if (near < samples) {
-    AngleSteps angle(arc.entry_rad - (near + 0.5 - 0.5 * reach) * spacing * span, -spacing * span);
+    AngleSteps angle(arc.front_rad - (near + 0.5 - 0.5 * reach) * spacing * span, -spacing * span);
     for (int k = near; k < samples; ++k, angle.advance()) {
       cosines_[static_cast<std::size_t>(k)] = angle.cos();
     }
@@ -109,20 +122,24 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
   const int whole = static_cast<int>(std::min(shift, static_cast<double>(samples)));
   const double fraction = shift - whole;
   const int first = std::min(whole + 1, samples);  // the first sample fed from within the arc
+  const double inverse_K = strength_.inverse_shear_modulus_per_m;
+  const double ratio = soil_.unloading_stiffness_ratio;
   for (int k = samples - 1; k >= first; --k) {
     const int at = k - whole;
     const double value_t = (1.0 - fraction) * jt[at] + fraction * jt[at - 1];
     const double value_y = (1.0 - fraction) * jy[at] + fraction * jy[at - 1];
-    jt[k] = value_t + (spin_term - travel_mps * cosines_[static_cast<std::size_t>(k)]) * dt_s;
-    jy[k] = value_y + lateral_step;
+    jt[k] = sheared(value_t,
+                    (spin_term - travel_mps * cosines_[static_cast<std::size_t>(k)]) * dt_s,
+                    inverse_K, ratio);
+    jy[k] = sheared(value_y, lateral_step, inverse_K, ratio);
   }
   const double entry_t = jt[0], entry_y = jy[0];
   for (int k = first - 1; k >= 0; --k) {
     const double from = k - shift;  // in (−0.5, 0]: on the ramp from the entry
     const double ramp = from > -0.5 ? (from + 0.5) / 0.5 : 0.0;
     const double cosine = cosines_[static_cast<std::size_t>(k)];
-    jt[k] = entry_t * ramp + (spin_term - travel_mps * cosine) * dt_s;
-    jy[k] = entry_y * ramp + lateral_step;
+    jt[k] = sheared(entry_t * ramp, (spin_term - travel_mps * cosine) * dt_s, inverse_K, ratio);
+    jy[k] = sheared(entry_y * ramp, lateral_step, inverse_K, ratio);
   }
 }
 
@@ -136,11 +153,11 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
                                          WheelWrench& wrench) {
   const int samples = wheel_.arc_samples;
   const double r = wheel_.rim_radius_m, rs = wheel_.shear_radius_m();
-  const double step = (arc.entry_rad - arc.exit_rad) / samples;
+  const double step = (arc.front_rad - arc.exit_rad) / samples;
   const double area = step * wheel_.width_m / wheel_.lanes;
   const bool compressed = arc.max_stress_rad > arc.exit_rad;  // a rear part mapped onto the front
   const double rear_rate =
-      compressed ? step * (arc.entry_rad - arc.max_stress_rad) / (arc.max_stress_rad - arc.exit_rad)
+      compressed ? step * (arc.front_rad - arc.max_stress_rad) / (arc.max_stress_rad - arc.exit_rad)
                  : 0.0;
   const std::size_t base = static_cast<std::size_t>(lane * samples);
   // First the angles and the normal stresses (independent from sample to sample, so their
@@ -149,10 +166,10 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
   double* cosines = sample_cos_.data();
   double* sigmas = sample_sigma_.data();
   {
-    AngleSteps angle(arc.entry_rad - 0.5 * step, -step);
+    AngleSteps angle(arc.front_rad - 0.5 * step, -step);
     std::optional<AngleSteps> rear;  // θ* behind θm
     for (int k = 0; k < samples; ++k, angle.advance()) {
-      const double theta = arc.entry_rad - (k + 0.5) * step;
+      const double theta = arc.front_rad - (k + 0.5) * step;
       sines[k] = angle.sin();
       cosines[k] = angle.cos();
       double cos_equivalent = angle.cos();
@@ -257,14 +274,17 @@ WheelSoilContact::Frame WheelSoilContact::motion_frame(const WheelKinematics& ki
 
 WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3& ground_normal,
                                    std::span<const double> lane_sinkage_m,
-                                   std::span<const double> lane_exit_rad, double dt_s) {
+                                   std::span<const double> lane_exit_rad,
+                                   std::span<const double> lane_front_rad, double dt_s) {
   const auto lanes = static_cast<std::size_t>(wheel_.lanes);
   if (lane_sinkage_m.size() != lanes || (!lane_exit_rad.empty() && lane_exit_rad.size() != lanes) ||
-      !(dt_s >= 0.0) || !std::isfinite(dt_s)) {
+      (!lane_front_rad.empty() && lane_front_rad.size() != lanes) || !(dt_s >= 0.0) ||
+      !std::isfinite(dt_s)) {
     std::ostringstream message;
     message << "WheelSoilContact::step: expected " << wheel_.lanes
-            << " lane sinkages (and as many exit angles, or none) and a finite dt_s >= 0, got "
-            << lane_sinkage_m.size() << ", " << lane_exit_rad.size() << " and " << dt_s;
+            << " lane sinkages (and as many exit and front angles, or none) and a finite dt_s >= 0,"
+            << " got " << lane_sinkage_m.size() << ", " << lane_exit_rad.size() << ", "
+            << lane_front_rad.size() << " and " << dt_s;
     throw std::invalid_argument(message.str());
   }
   const Vec3 rolling = cross(kinematics.axle, ground_normal);
@@ -274,23 +294,34 @@ WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3
   const Vec3 forward_wheel = (1.0 / length) * rolling;
   const double rim_speed = wheel_.shear_radius_m() * kinematics.spin_radps;
   const double travel = dot(kinematics.velocity_mps, forward_wheel);
-  update_direction(rim_speed, travel);
+  const int given_direction = direction_;  // the frame the exit and front angles were found in
+  update_direction(rim_speed, travel, dt_s);
+  const bool mirrored = direction_ != given_direction;
   const Frame frame = motion_frame(kinematics, forward_wheel, travel);
   double contact_area = 0.0;
   for (int lane = 0; lane < wheel_.lanes; ++lane) {
     const double sinkage = lane_sinkage_m[static_cast<std::size_t>(lane)];
-    if (!(sinkage > 0.0)) {  // released: the soil the rim left keeps no displacement
+    double exit = lane_exit_rad.empty() ? 0.0 : lane_exit_rad[static_cast<std::size_t>(lane)];
+    double front = lane_front_rad.empty() ? std::numeric_limits<double>::infinity()
+                                          : lane_front_rad[static_cast<std::size_t>(lane)];
+    if (mirrored && !lane_exit_rad.empty() && !lane_front_rad.empty()) {
+      // Found in the frame this step turned: what lay behind now lies ahead.
+      const double behind = exit;
+      exit = -front;
+      front = -behind;
+    }
+    const ContactArc arc = contact_arc(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit, front);
+    if (!(sinkage > 0.0) || !(arc.front_rad > arc.exit_rad)) {
+      // Released: the soil the rim left keeps no displacement.
       const auto first = static_cast<std::ptrdiff_t>(lane * wheel_.arc_samples);
       std::fill(shear_t_.begin() + first, shear_t_.begin() + first + wheel_.arc_samples, 0.0);
       std::fill(shear_y_.begin() + first, shear_y_.begin() + first + wheel_.arc_samples, 0.0);
       continue;
     }
-    const double exit = lane_exit_rad.empty() ? 0.0 : lane_exit_rad[static_cast<std::size_t>(lane)];
-    const ContactArc arc = contact_arc(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit);
     advect_lane(lane, arc, frame.spin_radps, frame.travel_mps, frame.lateral_mps, dt_s);
     add_lane_stresses(lane, arc, frame, wrench);
     contact_area +=
-        (arc.entry_rad - arc.exit_rad) * wheel_.rim_radius_m * wheel_.width_m / wheel_.lanes;
+        (arc.front_rad - arc.exit_rad) * wheel_.rim_radius_m * wheel_.width_m / wheel_.lanes;
     wrench.sinkage_m = std::max(wrench.sinkage_m, std::min(sinkage, wheel_.rim_radius_m));
     wrench.diagnostics.entry_angle_rad =
         std::max(wrench.diagnostics.entry_angle_rad, arc.entry_rad);

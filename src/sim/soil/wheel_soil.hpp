@@ -4,21 +4,27 @@
 //
 // Shear displacement state. Per lane and arc sample, j = (j_t, j_y): how far the blade tips have
 // slid against the soil they touch, signed as the soil's pull on the wheel. Each step
-//   j(u, t + dt) = j(u − Δu, t) + v_j(θ) dt,   Δu = max(ω, 0) dt / (θ1 − θ2),
+//   j(u, t + dt) = j(u − Δu, t) ⊕ v_j(θ) dt,   Δu = max(ω, 0) dt / (θf − θ2),
 //   v_jt = r_s ω − v_x cos θ,   v_jy = −v_y,
-// u ∈ [0, 1] the position along the arc from entry to exit: the rim carries its displacement from
-// the entry (fresh soil, j = 0) to the exit at its own angular speed ω (semi-Lagrangian, stable at
-// any step). In steady rolling this is exactly Wong–Reece's
+// u ∈ [0, 1] the position along the arc from the front θf (θ1 in fresh soil) to the exit: the rim
+// carries its displacement from the entry (fresh soil, j = 0) to the exit at its own angular speed
+// ω (semi-Lagrangian, stable at any step). j ⊕ dj is elastoplastic: an increment along j (or from
+// j = 0) loads along Janosi–Hanamoto's curve, one against j unloads unloading_stiffness_ratio
+// times stiffer than the curve's start until the mobilised share is 0, the rest loading the other
+// way (Wong's repetitive shear tests unload steeply). Where j grows monotonically from the entry —
+// a driven wheel rolling steadily — this is exactly Wong–Reece's
 //   j_t(θ) = r_s[(θ1 − θ) − (1 − s)(sin θ1 − sin θ)],   j_y(θ) = −v_y (θ1 − θ) / ω,
 // but it needs no slip ratio: at rest Δu = 0 and j integrates the creep, so a still wheel on a
 // slope is held like a spring of stiffness ≈ (c + σ tan φ)/K per unit area, and a locked wheel
 // being dragged is regular.
 //
-// Direction: the arc's entry lies ahead of the wheel in the direction of r_s ω + v_x; when that
-// changes sign (beyond 1 mm/s) the motion frame mirrors (x → −x, the state mirrored along the arc
-// and j_t negated, the blades' handedness flipped with it).
+// Direction: the arc's entry lies ahead of the wheel in the direction of r_s ω + v_x; when the arc
+// has moved K (the soil's shear modulus) back against it, the motion frame mirrors (x → −x, the
+// state mirrored along the arc and j_t negated, the blades' handedness flipped with it, the exit
+// and front angles given for that step swapped). A wheel rocking in its bowl keeps its frame, and
+// with it its pressure profile.
 //
-// Damping: over the contact's area A = Σ_lanes Δb·r·(θ1 − θ2), a force −R·A·v_up along the wheel's
+// Damping: over the contact's area A = Σ_lanes Δb·r·(θf − θ2), a force −R·A·v_up along the wheel's
 // up (SoilParams::vertical_damping_pa_s_per_m), never pulling the wheel down into the soil beyond
 // cancelling the soil's own normal force.
 //
@@ -69,13 +75,19 @@ class WheelSoilContact {
   // lane_sinkage_m: per lane (wheel.lanes, from −y to +y across the width) the depth of the rim's
   // lowest point below the undisturbed surface; ≤ 0 is no contact. lane_exit_rad: per lane the
   // exit angle θ2 ∈ [−θ1, 0] in the direction of motion (wheel_stress.hpp), or empty for 0 (a
-  // rolling wheel's rut). ground_normal: unit, up.
+  // rolling wheel's rut). lane_front_rad: per lane where the rim meets the soil ahead, in
+  // [0, θ1], or empty for θ1 (fresh soil ahead). ground_normal: unit, up.
   WheelWrench step(const WheelKinematics& kinematics, const Vec3& ground_normal,
                    std::span<const double> lane_sinkage_m, std::span<const double> lane_exit_rad,
-                   double dt_s);
+                   std::span<const double> lane_front_rad, double dt_s);
+  WheelWrench step(const WheelKinematics& kinematics, const Vec3& ground_normal,
+                   std::span<const double> lane_sinkage_m, std::span<const double> lane_exit_rad,
+                   double dt_s) {
+    return step(kinematics, ground_normal, lane_sinkage_m, lane_exit_rad, {}, dt_s);
+  }
   WheelWrench step(const WheelKinematics& kinematics, const Vec3& ground_normal,
                    std::span<const double> lane_sinkage_m, double dt_s) {
-    return step(kinematics, ground_normal, lane_sinkage_m, {}, dt_s);
+    return step(kinematics, ground_normal, lane_sinkage_m, {}, {}, dt_s);
   }
 
   // Lateral offset of lane l's centre along the axle.
@@ -89,7 +101,7 @@ class WheelSoilContact {
 
  private:
   struct Frame;
-  void update_direction(double rim_speed_mps, double travel_speed_mps);
+  void update_direction(double rim_speed_mps, double travel_speed_mps, double dt_s);
   Frame motion_frame(const WheelKinematics& kinematics, const Vec3& forward_wheel,
                      double travel_mps) const;
   void advect_lane(int lane, const ContactArc& arc, double spin_radps, double travel_mps,
@@ -108,6 +120,7 @@ class WheelSoilContact {
   double modulus_pa_ = 0.0;  // k_c/b + k_φ
   double passive_ = 1.0;     // N_φ of the sidewall
   int direction_ = 1;
+  double retreat_m_ = 0.0;  // how far the arc has moved back against direction_ (update_direction)
   std::vector<double> shear_t_, shear_y_, cosines_;
   // Per arc sample of the lane being summed: sin θ, cos θ, σ, the blades' mobilised shares
   // across and along (scratch of add_lane_stresses).

@@ -20,22 +20,23 @@ double regularised_slip(double rim_speed_mps, double travel_speed_mps) {
 }
 
 ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinkage_m, double slip,
-                       double exit_rad) {
+                       double exit_rad, double front_rad) {
   ContactArc arc;
   const double sinkage = std::clamp(sinkage_m, 0.0, rim_radius_m);
   arc.cos_entry = 1.0 - sinkage / rim_radius_m;
   arc.entry_rad = std::acos(arc.cos_entry);
   arc.exit_rad = std::clamp(exit_rad, -arc.entry_rad, 0.0);
+  arc.front_rad = std::clamp(front_rad, 0.0, arc.entry_rad);
   const double ratio =
       std::clamp(soil.max_stress_angle_c1 + soil.max_stress_angle_c2 * slip, 0.0, 1.0);
-  arc.max_stress_rad = ratio * (arc.entry_rad + arc.exit_rad);
+  arc.max_stress_rad = ratio * (arc.front_rad + arc.exit_rad);
   arc.sinkage_exponent = soil.sinkage_exponent + soil.slip_sinkage_exponent * std::abs(slip);
   return arc;
 }
 
 double equivalent_angle_rad(const ContactArc& arc, double theta_rad) {
   if (theta_rad < arc.max_stress_rad && arc.max_stress_rad > arc.exit_rad) {
-    return arc.entry_rad - (theta_rad - arc.exit_rad) * (arc.entry_rad - arc.max_stress_rad) /
+    return arc.front_rad - (theta_rad - arc.exit_rad) * (arc.front_rad - arc.max_stress_rad) /
                                (arc.max_stress_rad - arc.exit_rad);
   }
   return theta_rad;
@@ -43,7 +44,7 @@ double equivalent_angle_rad(const ContactArc& arc, double theta_rad) {
 
 double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,
                         double width_m, double theta_rad) {
-  if (theta_rad > arc.entry_rad || theta_rad < arc.exit_rad || arc.entry_rad <= 0.0) return 0.0;
+  if (theta_rad > arc.front_rad || theta_rad < arc.exit_rad || arc.entry_rad <= 0.0) return 0.0;
   const double modulus = soil.cohesive_modulus / width_m + soil.frictional_modulus;
   return normal_stress_from_cos_pa(modulus, arc, rim_radius_m,
                                    std::cos(equivalent_angle_rad(arc, theta_rad)));

@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sim/soil/fast_math.hpp"
 #include "sim/soil/soil_params.hpp"
@@ -44,12 +45,18 @@ struct ContactArc {
   double max_stress_rad = 0.0;    // θm
   double exit_rad = 0.0;          // θ2
   double sinkage_exponent = 1.0;  // n
+  // Where the rim meets the soil ahead, θ1 unless the soil there lies lower than undisturbed (a
+  // rut the wheel rolls back into): the arc's stresses act on [θ2, θf], Bekker's depth measured
+  // from θ1's level all the same.
+  double front_rad = 0.0;
 };
 
 // The arc of a rim of radius rim_radius_m sunk sinkage_m (clamped to [0, r]) at slip s, the soil
-// behind it reaching up to exit_rad (clamped to [−θ1, 0]).
+// behind it reaching up to exit_rad (clamped to [−θ1, 0]), ahead up to front_rad (clamped to
+// [0, θ1]; the default is θ1).
 ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinkage_m, double slip,
-                       double exit_rad = 0.0);
+                       double exit_rad = 0.0,
+                       double front_rad = std::numeric_limits<double>::infinity());
 
 // σ(θ) in Pa; 0 outside the arc. width_m is the wheel's full width b (Bekker's k_c/b).
 double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,

@@ -21,7 +21,8 @@ reference::Soil reference_soil(const SoilParams& soil) {
           soil.cohesive_modulus,    soil.frictional_modulus,
           soil.cohesion_pa,         soil.friction_angle_rad,
           soil.shear_modulus_m,     soil.soil_metal_friction_angle_rad,
-          soil.max_stress_angle_c1, soil.max_stress_angle_c2};
+          soil.max_stress_angle_c1, soil.max_stress_angle_c2,
+          soil.unloading_stiffness_ratio};
 }
 
 // A single-wheel rig: the wheel at a fixed sinkage, turning at spin_radps and carried along x at
@@ -44,26 +45,35 @@ WheelWrench run_rig(WheelSoilContact& contact, double sinkage_m, double spin_rad
 
 // The shear-displacement state reaches Wong–Reece's steady displacement: the rig's drawbar pull
 // and load match the separate reference at the same sinkage, slip −0.2 … 0.8, within 0.2 % of the
-// load (the transport sums the slip rate by the midpoint rule over 24 samples).
+// load (the transport sums the slip rate by the midpoint rule over 24 samples). The reference
+// follows each soil element's elastoplastic path (its unloading ratio): where a towed wheel's
+// soil is first sheared forward near the entry and then back, it unloads stiffly; everywhere
+// else it is Janosi–Hanamoto of the total displacement.
 TEST(WheelSoil, SteadyRollingReachesWongReeceAcrossSlip) {
   const SoilParams soil = dry_sand();
-  WheelGeometry wheel;
-  wheel.bladed = false;
-  reference::Wheel reference_wheel{
-      wheel.rim_radius_m, wheel.shear_radius_m(), wheel.width_m, 0.0, 1, false};
-  for (int step = 0; step <= 10; ++step) {
-    const double slip = -0.2 + 0.1 * step;
-    const reference::Result expected =
-        reference::at_load(reference_soil(soil), reference_wheel, kWheelLoadN, slip);
-    WheelSoilContact contact(soil, wheel);
-    const WheelWrench wrench = run_rig(contact, expected.sinkage_m, 2.0, slip, 1.0);
-    EXPECT_NEAR(wrench.diagnostics.normal_load_n / expected.weight_n, 1.0, 0.002)
-        << "slip " << slip;
-    EXPECT_NEAR(wrench.diagnostics.drawbar_pull_n / expected.weight_n,
-                expected.drawbar_pull_n / expected.weight_n, 0.002)
-        << "slip " << slip;
-    EXPECT_NEAR(wrench.diagnostics.slip, slip, 1e-9);
-    EXPECT_NEAR(wrench.sinkage_m, expected.sinkage_m, 1e-12);
+  for (const int samples : {24, 96}) {
+    WheelGeometry wheel;
+    wheel.bladed = false;
+    wheel.arc_samples = samples;
+    reference::Wheel reference_wheel{
+        wheel.rim_radius_m, wheel.shear_radius_m(), wheel.width_m, 0.0, 1, false};
+    for (int step = 0; step <= 10; ++step) {
+      const double slip = -0.2 + 0.1 * step;
+      const reference::Result expected =
+          reference::at_load(reference_soil(soil), reference_wheel, kWheelLoadN, slip);
+      WheelSoilContact contact(soil, wheel);
+      const WheelWrench wrench = run_rig(contact, expected.sinkage_m, 2.0, slip, 1.0);
+      // At 24 samples a towed wheel's unloading near the entry, a kink in the shear along the
+      // arc, costs the midpoint rule up to 0.5 % of the load; at 96 it is within 0.2 % again.
+      const double tolerance = samples == 24 && slip < 0.0 ? 0.006 : 0.002;
+      EXPECT_NEAR(wrench.diagnostics.normal_load_n / expected.weight_n, 1.0, tolerance)
+          << "slip " << slip << ", " << samples << " samples";
+      EXPECT_NEAR(wrench.diagnostics.drawbar_pull_n / expected.weight_n,
+                  expected.drawbar_pull_n / expected.weight_n, tolerance)
+          << "slip " << slip << ", " << samples << " samples";
+      EXPECT_NEAR(wrench.diagnostics.slip, slip, 1e-9);
+      EXPECT_NEAR(wrench.sinkage_m, expected.sinkage_m, 1e-12);
+    }
   }
 }
 
@@ -141,26 +151,32 @@ TEST(WheelSoil, SpinningFasterLowersTheLateralResistance) {
   }
 }
 
-// No slip ratio: a wheel that has crept 2 mm downhill and then stands still (v = 0, ω = 0) keeps
-// the holding force of a spring, step after step, instead of losing it with its speed.
+// No slip ratio: a wheel standing in its bowl (the soil touching it all round, θ2 = −θ1) that
+// has crept 2 mm downhill and then stands still (v = 0, ω = 0) keeps the holding force of a
+// spring, step after step, instead of losing it with its speed.
 TEST(WheelSoil, StillWheelIsHeldLikeASpring) {
   WheelSoilContact contact(dry_sand(), WheelGeometry{});
-  const std::vector<double> lanes(3, 0.025);
+  const double sinkage = 0.025;
+  const std::vector<double> lanes(3, sinkage);
+  const std::vector<double> bowl(3, -std::acos(1.0 - sinkage / WheelGeometry{}.rim_radius_m));
   const double creep_mps = -0.002;  // 2 mm over a second
-  for (int i = 0; i < 1000; ++i) {
-    contact.step({{0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {creep_mps, 0.0, 0.0}, 0.0}, kUp, lanes, kDt);
-  }
+  const auto creep = [&] {
+    for (int i = 0; i < 1000; ++i) {
+      contact.step({{0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {creep_mps, 0.0, 0.0}, 0.0}, kUp, lanes,
+                   bowl, kDt);
+    }
+  };
   const WheelKinematics still{{0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {0.0, 0.0, 0.0}, 0.0};
-  const double held = contact.step(still, kUp, lanes, kDt).diagnostics.drawbar_pull_n;
+  creep();
+  const double held = contact.step(still, kUp, lanes, bowl, kDt).diagnostics.drawbar_pull_n;
   EXPECT_GT(held, 0.05 * kWheelLoadN);  // uphill, against the creep
   for (int i = 0; i < 10000; ++i) {
-    EXPECT_EQ(contact.step(still, kUp, lanes, kDt).diagnostics.drawbar_pull_n, held);
+    EXPECT_EQ(contact.step(still, kUp, lanes, bowl, kDt).diagnostics.drawbar_pull_n, held);
   }
   // Twice the creep holds more, but less than twice as much (Janosi–Hanamoto's saturation).
-  for (int i = 0; i < 1000; ++i) {
-    contact.step({{0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {creep_mps, 0.0, 0.0}, 0.0}, kUp, lanes, kDt);
-  }
-  const double held_twice = contact.step(still, kUp, lanes, kDt).diagnostics.drawbar_pull_n;
+  creep();
+  const double held_twice =
+      contact.step(still, kUp, lanes, bowl, kDt).diagnostics.drawbar_pull_n;
   EXPECT_GT(held_twice, held);
   EXPECT_LT(held_twice, 2.0 * held);
 }
@@ -260,7 +276,9 @@ TEST(WheelSoil, RejectsBadInput) {
   test_support::expect_invalid_argument([&] { contact.step({}, kUp, two, kDt); },
                                         {"expected 3 lane sinkages", "got 2"});
   test_support::expect_invalid_argument([&] { contact.step({}, kUp, three, two, kDt); },
-                                        {"as many exit angles", "got 3, 2"});
+                                        {"as many exit and front angles", "got 3, 2, 0"});
+  test_support::expect_invalid_argument([&] { contact.step({}, kUp, three, three, two, kDt); },
+                                        {"as many exit and front angles", "got 3, 3, 2"});
   test_support::expect_invalid_argument([&] { contact.step({}, kUp, three, -1.0); }, {"dt_s >= 0"});
   SoilParams soil = dry_sand();
   soil.shear_modulus_m = -1.0;
