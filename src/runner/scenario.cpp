@@ -179,6 +179,7 @@ void read_faults(const Reader& r, const toml::table& root, Scenario& s) {
       if (k == "t") f.t_s = r.number(*t, k, 0.0, 0.0, s.duration_s, name);
       else if (k == "wheel_blocked") f.wheel_blocked = r.indices(*t, k, kWheelCount, name);
       else if (k == "wheel_no_contact") f.wheel_no_contact = r.indices(*t, k, kWheelCount, name);
+      else if (k == "joint_jammed") f.joint_jammed = r.indices(*t, k, 2, name);
       else if (k == "silent") f.silent = r.indices(*t, k, kMotorCount + 1, name);
       else if (k == "frame_loss") f.frame_loss = r.number(*t, k, 0.0, 0.0, 1.0, name);
       // The simulator's bound (SimulatedRover::set_faults), checked here to name the line.

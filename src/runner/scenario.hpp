@@ -11,6 +11,7 @@
 //              | silent = true (the operator says nothing from t on) | stop = true;
 //              a targets/gamepad input is sent every cycle until the next [[input]]
 //   [[fault]]  t = 4.0, then any of: wheel_blocked = [0], wheel_no_contact = [2],
+//              joint_jammed = [0] (0 the front joint, 1 the rear),
 //              silent = [3], frame_loss = 0.1, lost_pulses = {motor = 2, fraction = 0.3},
 //              battery_sag_ohm = 0.5, brownout = true, driver_halt = true, clear = true
 //   [[runtime_change]] t = 10.0, then the [runtime] keys
@@ -47,7 +48,7 @@ struct InputEvent {
 
 struct FaultEvent {
   double t_s = 0.0;
-  std::vector<std::size_t> wheel_blocked, wheel_no_contact, silent;
+  std::vector<std::size_t> wheel_blocked, wheel_no_contact, silent, joint_jammed;
   std::optional<double> frame_loss;
   std::optional<std::pair<std::size_t, double>> lost_pulses;
   std::optional<double> battery_sag_ohm;

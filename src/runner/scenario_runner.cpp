@@ -26,6 +26,7 @@ void apply_fault(const FaultEvent& f, Session& session) {
   sim::SimulatedRover& rover = session.rover();
   sim::SimFaults faults = f.clear ? sim::SimFaults{} : rover.faults();
   for (std::size_t w : f.wheel_blocked) faults.wheel_blocked[w] = true;
+  for (std::size_t j : f.joint_jammed) faults.joint_jammed[j] = true;
   for (std::size_t w : f.wheel_no_contact) faults.wheel_no_contact[w] = true;
   for (std::size_t c : f.silent) faults.silent[c] = true;
   if (f.frame_loss) faults.frame_loss_probability = *f.frame_loss;

@@ -222,7 +222,12 @@ void RoverPhysics::Impl::apply_joint_mode(std::size_t slot) {
   joint_range[1] = joint_stops_rad[slot][1];
   shaft_range[0] = shaft_stops_rad[slot][0];
   shaft_range[1] = shaft_stops_rad[slot][1];
-  if (locked) {
+  if (const auto& jam = jammed_rad[slot]) {  // the lock at the jam, the shaft pinned
+    m.eq_active[ids.joint_lock[slot]] = 1;
+    m.eq_active[ids.joint_coupling[slot]] = 0;
+    m.eq_data[ids.joint_lock[slot] * mjNEQDATA] = (*jam)[0] - m.qpos0[joint_qpos];
+    shaft_range[0] = shaft_range[1] = (*jam)[1];
+  } else if (locked) {
     shaft_range[0] = joint.held_angle_rad();
     shaft_range[1] = joint.held_angle_rad() + joint.backlash_rad();
   } else if (joint.mode() == JointMode::kPushingUp) {
@@ -456,6 +461,20 @@ void RoverPhysics::set_wheel_blocked(std::size_t wheel, bool blocked) {
   // MuJoCo's joint equality holds q − q0 = polycoef[0]: hold the angle the wheel has now.
   m.eq_data[constraint * mjNEQDATA] = impl_->data->qpos[qpos] - m.qpos0[qpos];
   m.eq_active[constraint] = blocked ? 1 : 0;
+}
+
+void RoverPhysics::set_joint_jammed(std::size_t slot, bool jammed) {
+  if (slot >= 2) throw std::out_of_range("physics: no joint " + std::to_string(slot));
+  auto& jam = impl_->jammed_rad[slot];
+  if (jammed == jam.has_value()) return;
+  if (jammed) {
+    const mjData& d = *impl_->data;
+    jam = std::array<double, 2>{d.qpos[impl_->ids.joint_qpos[slot]],
+                                d.qpos[impl_->ids.shaft_qpos[kJointMotors[slot]]]};
+  } else {
+    jam.reset();
+  }
+  impl_->apply_joint_mode(slot);
 }
 
 void RoverPhysics::set_wheel_contact(std::size_t wheel, bool has_contact) {

@@ -94,6 +94,9 @@ class RoverPhysics {
   // Faults of Field Experiment 6.2 and chapter 4: a rigid wheel, a wheel without ground contact.
   void set_wheel_blocked(std::size_t wheel, bool blocked);
   void set_wheel_contact(std::size_t wheel, bool has_contact);
+  // A jammed joint (slot 0 the front, 1 the rear): the joint and its motor's shaft held where they
+  // are, whatever the motor does, until released.
+  void set_joint_jammed(std::size_t slot, bool jammed);
 
   // The calibration stand: the center unit held 1 m above the ground, all wheels free, turned by
   // R = Ry(pitch)·Rx(roll) (roll about x1 first, then pitch; right-hand rule, like GroundTruth's

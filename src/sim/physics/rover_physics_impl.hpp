@@ -52,6 +52,8 @@ struct RoverPhysics::Impl {
   MotorDrive drive{};
   bool powered = false;  // false until the first set_drive: the motors deliver no torque
   std::array<JointDrive, 2> joints;
+  // A jammed joint (set_joint_jammed): the joint's and the shaft's angles it is held at.
+  std::array<std::optional<std::array<double, 2>>, 2> jammed_rad{};
   std::array<bool, 2> joint_overrun{};  // a pushing shaft ahead of ω0, braked by the lock
   // Per geom: the terrain material's μ and skid sinkage (0 for the rover's own geoms).
   std::vector<double> geom_ground_friction, geom_skid_sinkage;

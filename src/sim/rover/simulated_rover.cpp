@@ -137,6 +137,7 @@ void SimulatedRover::set_faults(const SimFaults& faults) {
     physics_.set_wheel_blocked(w, faults.wheel_blocked[w]);
     physics_.set_wheel_contact(w, !faults.wheel_no_contact[w]);
   }
+  for (std::size_t j = 0; j < 2; ++j) physics_.set_joint_jammed(j, faults.joint_jammed[j]);
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     firmware_.set_lost_pulse_fraction(i, faults.lost_pulse_fraction[i]);
   }

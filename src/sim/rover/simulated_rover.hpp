@@ -48,6 +48,7 @@ struct TimedFrame {
 struct SimFaults {
   std::array<bool, kWheelCount> wheel_blocked{};     // a rigid wheel (Field Experiment 6.2)
   std::array<bool, kWheelCount> wheel_no_contact{};  // a wheel without ground contact
+  std::array<bool, 2> joint_jammed{};                // a joint that cannot bend (front, rear)
   std::array<double, kMotorCount> lost_pulse_fraction{};  // a loose encoder connection
   std::array<bool, kMotorCount + 1> silent{};        // µ0–µ8 never answer
   double frame_loss_probability = 0.0;

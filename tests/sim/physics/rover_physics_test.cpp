@@ -247,6 +247,30 @@ TEST(RoverPhysics, ABlockedWheelStallsItsMotor) {
   expect_healthy(physics);
 }
 
+// A jammed joint (the joint-blocked failsafe's scenario): commanded to extend, the front joint
+// and its motor's shaft stay where the jam caught them, the motor stalled against it; released,
+// the joint extends again.
+TEST(RoverPhysics, AJammedJointHoldsAgainstItsMotor) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  physics.set_drive(drive_at({}));
+  run(physics, 300);
+  physics.set_joint_jammed(0, true);
+  const double joint = physics.truth().joint_angle_rad[kFrontJoint];
+  const double shaft = physics.shaft_angle_rad()[kFrontJoint];
+  MotorVector speeds{};
+  speeds[kFrontJoint] = -2.0;
+  physics.set_drive(joints_only(speeds));
+  run(physics, 1000);
+  EXPECT_NEAR(physics.truth().joint_angle_rad[kFrontJoint], joint, 1e-3);
+  EXPECT_NEAR(physics.shaft_angle_rad()[kFrontJoint], shaft, 1e-3);
+  EXPECT_NEAR(physics.shaft_velocity_radps()[kFrontJoint], 0.0, 1e-3);
+  physics.set_joint_jammed(0, false);
+  run(physics, 500);
+  EXPECT_LT(physics.truth().joint_angle_rad[kFrontJoint], joint - 0.1);  // extending
+  EXPECT_THROW(physics.set_joint_jammed(2, true), std::out_of_range);
+  expect_healthy(physics);
+}
+
 // Sinkage (terrain.hpp): a rigid wheel dragged through sand ploughs, a rolling one does not.
 // - On flat sand with all wheels driven at 2 rad/s for 3 s, the rover covers the same ground with
 //   and without skid sinkage: no wheel skids.
