@@ -95,7 +95,7 @@ TEST(ShippedScenarios, IncludeTheRequiredSet) {
         // Issue #15: the failsafes that need an estimate, the missions.
         "tip-over", "stuck", "odometry-square-hard", "odometry-square-sand", "waypoint-loop-hard",
         "waypoint-loop-sand", "odometry-rolking",
-        // The joint-blocked failsafe (Field Experiment 6.2's rigid wheel on soft sand).
+        // The joint-blocked failsafe (a jammed joint on soft sand).
         "joint-blocked",
         // Issue #14: Field Experiment 5.2, m3 on soft sand.
         "sideways-drift-soft-sand"}) {
