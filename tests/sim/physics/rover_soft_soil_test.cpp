@@ -51,6 +51,19 @@ void raise_soil(RoverPhysics& physics, Inside inside, double level_m) {
   }
 }
 
+// Over `steps` further steps, the rms of the accelerometer's reading less gravity, per axis.
+std::array<double, 3> accelerometer_rms_at_rest(RoverPhysics& physics, int steps) {
+  std::array<double, 3> square_sum{};
+  for (int i = 0; i < steps; ++i) {
+    physics.step();
+    const auto& a = physics.imu().accel_mps2;
+    const std::array<double, 3> off{a[0], a[1], a[2] + Params{}.sensors.gravity_mps2};  // −z: (3.5)
+    for (std::size_t k = 0; k < 3; ++k) square_sum[k] += off[k] * off[k];
+  }
+  for (double& sum : square_sum) sum = std::sqrt(sum / steps);
+  return square_sum;
+}
+
 // Standing unpowered on soft sand the rover sinks in — the centre wheels, under the centre unit's
 // 30 kg, deepest: 1–3 cm below the 0.115 m rim (the blades' 1 cm more) — and stays put: the soil
 // holds it without a push along the ground. At rest its accelerometer reads gravity: within
@@ -60,16 +73,8 @@ TEST(RoverSoftSoil, StandsOnSoftSandAndSinksIn) {
   RoverPhysics soft(Params{}, soft_flat());
   run(soft, 2000);
   const GroundTruth start = soft.truth();
-  std::array<double, 3> square_sum{};
-  for (int i = 0; i < 1000; ++i) {
-    soft.step();
-    const auto& a = soft.imu().accel_mps2;
-    const std::array<double, 3> off{a[0], a[1], a[2] + Params{}.sensors.gravity_mps2};  // −z: (3.5)
-    for (std::size_t k = 0; k < 3; ++k) square_sum[k] += off[k] * off[k];
-  }
-  for (std::size_t k = 0; k < 3; ++k) {
-    EXPECT_LT(std::sqrt(square_sum[k] / 1000.0), 0.2) << "axis " << k;
-  }
+  const std::array<double, 3> rms = accelerometer_rms_at_rest(soft, 1000);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_LT(rms[k], 0.2) << "axis " << k;
   const GroundTruth end = soft.truth();
   expect_healthy(soft);
   for (std::size_t wheel : {kCenterLeft, kCenterRight}) {
@@ -102,16 +107,8 @@ TEST(RoverSoftSoil, StandsStillAfterATurnInPlace) {
   soft.set_drive(drive_at({}));
   run(soft, 2000);
   const GroundTruth start = soft.truth();
-  std::array<double, 3> square_sum{};
-  for (int i = 0; i < 2000; ++i) {
-    soft.step();
-    const auto& a = soft.imu().accel_mps2;
-    const std::array<double, 3> off{a[0], a[1], a[2] + Params{}.sensors.gravity_mps2};
-    for (std::size_t k = 0; k < 3; ++k) square_sum[k] += off[k] * off[k];
-  }
-  for (std::size_t k = 0; k < 3; ++k) {
-    EXPECT_LT(std::sqrt(square_sum[k] / 2000.0), 0.2) << "axis " << k;
-  }
+  const std::array<double, 3> rms = accelerometer_rms_at_rest(soft, 2000);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_LT(rms[k], 0.2) << "axis " << k;
   const GroundTruth end = soft.truth();
   EXPECT_LT(
       std::hypot(end.position_m[0] - start.position_m[0], end.position_m[1] - start.position_m[1]),
