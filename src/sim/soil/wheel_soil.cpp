@@ -13,7 +13,6 @@
 namespace marsokhod::sim::soil {
 namespace {
 
-
 double mobilised(double displacement_m, double shear_modulus_m) {
   const double share = 1.0 - std::exp(-std::abs(displacement_m) / shear_modulus_m);
   return displacement_m < 0.0 ? -share : share;
