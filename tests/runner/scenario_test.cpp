@@ -135,6 +135,9 @@ TEST(Scenario, ABadFaultIndexNamesTheKeyAndLine) {
   EXPECT_TRUE(names(e, "fault[0].wheel_blocked", 3));
   EXPECT_NE(e.find("0..5"), std::string::npos) << e;
   EXPECT_TRUE(names(error_of("[[fault]]\nsilent = [9]\n"), "fault[0].silent", 2));
+  const std::string joint = error_of("[[fault]]\njoint_jammed = [2]\n");  // 0 front, 1 rear
+  EXPECT_TRUE(names(joint, "fault[0].joint_jammed", 2));
+  EXPECT_NE(joint.find("0..1"), std::string::npos) << joint;
   EXPECT_TRUE(names(error_of("[[fault]]\nlost_pulses = { motor = 8, fraction = 0.5 }\n"),
                     "fault[0].lost_pulses", 2));
 }
