@@ -205,8 +205,8 @@ std::vector<WheelWrench> SoftSoil::step(std::span<const WheelKinematics> wheels,
     const Vec3 normal = ground_normal(wheels[i], i);
     const int touching = find_lane_contacts(i, wheels[i], normal, sinkage, exit, front);
     wrenches.push_back(contacts_[i].step(wheels[i], normal, sinkage, exit, front, dt_s));
-    excavation_m3_[i] += carried_out_m3(i, wheels[i], normal,
-                                        wrenches.back().diagnostics.in_contact ? touching : 0, dt_s);
+    const int carrying = wrenches.back().diagnostics.in_contact ? touching : 0;
+    excavation_m3_[i] += carried_out_m3(i, wheels[i], normal, carrying, dt_s);
   }
   since_yield_s_ += dt_s;
   yielded_ = since_yield_s_ + 0.5 * dt_s >= yield_period_s_;

@@ -9,13 +9,14 @@
 // exit angle θ2 is the furthest angle behind the bottom (down to −θ1, searched in steps of θ1/16
 // and interpolated) at which the rim is no higher above the soil than at its bottom, within the
 // sagitta of a cell's diagonal on the rim (cell²/(4r), 0.87 mm: what the grid cannot resolve of a
-// bowl): about −0.12 rad behind a rolling wheel, −θ1 under one that sank in place. Its front
-// angle θf is found the same way ahead of the bottom (up to θ1), within the soil's elastic rebound
-// at the bottom (its plastic sinkage / unloading_stiffness_ratio, the grid's contact rule) or the
-// sagitta, whichever is larger: θ1 in fresh soil (the rim's point at θ1 lies in it, one look),
-// less where the soil ahead lies lower, a rut the wheel rolls into. The contact gives the wrench. When the grid yields (below), again in wheel order: press (plastic sinkage,
-// soil to the patch's rim), excavation, relaxation to the angle of repose over the patch and
-// where the spoil landed, 3 cells around their box.
+// bowl): about −0.12 rad behind a rolling wheel, −θ1 under one that sank in place. Its front angle
+// θf is found the same way ahead of the bottom (up to θ1), within the soil's elastic rebound at the
+// bottom (its plastic sinkage / unloading_stiffness_ratio, the grid's contact rule) or the sagitta,
+// whichever is larger: θ1 in fresh soil (the rim's point at θ1 lies in it, one look), less where
+// the soil ahead lies lower, a rut the wheel rolls into. The contact gives the wrench. When the
+// grid yields (below), again in wheel order: press (plastic sinkage, soil to the patch's rim),
+// excavation, relaxation to the angle of repose over the patch and where the spoil landed, 3 cells
+// around their box.
 //
 // Excavation: a blade groove of height h across the width b carries the soil it fills; rolling
 // without slip it lays it down where it took it, so only the slip's share leaves the rut:
@@ -23,16 +24,17 @@
 // c the slip ∫(r_s ω − v) dt through a play of width K (c follows the slip once it has run K
 // ahead of it, and stays while the slip runs back): the grooves carry soil out only as the rim
 // slips on past the soil, not while it works to and fro within the soil's elastic shear. The play
-// starts again when the wheel leaves the soil or its frame turns. Summed step by step, dropped
-// one cell behind the rim, against the direction of motion, at the yield. (A wheel that has left the soil by then, its press touching no cell, takes nothing: the
-// sum is dropped with the soil left in place, the books balanced.)
+// starts again when the wheel leaves the soil or its frame turns. Summed step by step, dropped one
+// cell behind the rim, against the direction of motion, at the yield. (A wheel that has left the
+// soil by then, its press touching no cell, takes nothing: the sum is dropped with the soil left in
+// place, the books balanced.)
 //
 // The wheels' forces are worked out every step; the grid yields (press, excavation, repose) once
 // per yield period of simulated time (10 ms unless told otherwise; 0: every step), at the wheels'
 // poses of that step, with the excavation summed since the last yield. In 10 ms a wheel at the
-// rover's top speed (2.8 rad/s × 0.125 m = 0.35 m/s) moves 3.5 mm, a sixth of a 2 cm cell, and
-// the sinkage is measured from the undisturbed level, not from the surface the grid last left; yielding at every step
-// cost 37 % of the soil's work.
+// rover's top speed (2.8 rad/s × 0.125 m = 0.35 m/s) moves 3.5 mm, a sixth of a 2 cm cell, and the
+// sinkage is measured from the undisturbed level, not from the surface the grid last left; yielding
+// at every step cost 37 % of the soil's work.
 #pragma once
 
 #include <cstddef>

@@ -18,9 +18,9 @@ double mobilised(double displacement_m, double shear_modulus_m) {
   return displacement_m < 0.0 ? -share : share;
 }
 
-// One step of shear displacement dj on soil displaced j. Loading (dj along j, or from j = 0) follows
-// Janosi–Hanamoto's curve; unloading (dj against j) is stiffer, ratio/K in the mobilised share per
-// metre, until the share reaches 0, and the rest of the step loads the other way.
+// One step of shear displacement dj on soil displaced j. Loading (dj along j, or from j = 0)
+// follows Janosi–Hanamoto's curve; unloading (dj against j) is stiffer, ratio/K in the mobilised
+// share per metre, until the share reaches 0, and the rest of the step loads the other way.
 double sheared(double j, double dj, double inverse_K, double ratio) {
   if (dj == 0.0 || j == 0.0 || (j > 0.0) == (dj > 0.0)) return j + dj;
   const double remaining = exp_nonpositive(-std::abs(j) * inverse_K);  // 1 − share
@@ -309,7 +309,8 @@ WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3
       exit = -front;
       front = -behind;
     }
-    const ContactArc arc = contact_arc(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit, front);
+    const ContactArc arc =
+        contact_arc(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit, front);
     if (!(sinkage > 0.0) || !(arc.front_rad > arc.exit_rad)) {
       // Released: the soil the rim left keeps no displacement.
       const auto first = static_cast<std::ptrdiff_t>(lane * wheel_.arc_samples);
