@@ -9,7 +9,7 @@ import assert from 'node:assert/strict';
 import http from 'node:http';
 import {
   checkPrerequisites, startServer, launchBrowser, openConsole, setPad, latestStatus,
-  waitForStatus, waitForLinkState, screenshot, WHEELS,
+  takeControl, waitForStatus, waitForLinkState, screenshot, WHEELS,
 } from './harness.mjs';
 
 const TOKEN = 'console-test-token-0123456789';
@@ -39,14 +39,6 @@ async function open(options) {
   const page = await openConsole(browser, server.url, options);
   pages.push(page);
   return page;
-}
-
-// Takes control; the take-over's stop holds until the console's input is neutral, so with
-// `rearm` (the pad centred) it also waits until the driver is re-armed.
-async function takeControl(page, { rearm = true } = {}) {
-  await page.click('#take-control');
-  await waitForLinkState(page, 'in-control', 3000);
-  if (rearm) await waitForStatus(page, 'the neutral input re-armed after the take-over', (s) => s.stop_latched === false, null, 2000);
 }
 
 // Drives forward with the scripted pad until the rover has moved and every wheel has duty.

@@ -172,6 +172,21 @@ export async function waitForLinkState(page, state, timeoutMs) {
   }
 }
 
+// Takes control with the page's button. The take-over's stop holds until the console's input is
+// neutral; with `rearm` (the pad centred) this also waits until the driver has re-armed after
+// this very take-over: a status whose stop names this client's take-over and is no longer
+// latched. (The newest status when the link says "in control" may still be one from before the
+// take-over reached the driver, unlatched; a loaded machine showed that window.)
+export async function takeControl(page, { rearm = true, timeoutMs = 3000 } = {}) {
+  await page.click('#take-control');
+  await waitForLinkState(page, 'in-control', timeoutMs);
+  if (!rearm) return;
+  const id = await page.evaluate(() => window.marsokhod.link.clientId);
+  await waitForStatus(page, `the neutral input re-armed after client ${id}'s take-over`,
+    (s, reason) => s.stop_latched === false && s.stop_reason.startsWith(reason),
+    `client ${id} took control`, timeoutMs);
+}
+
 export async function screenshot(page, name) {
   fs.mkdirSync(SCREENSHOT_DIR, { recursive: true });
   const file = path.join(SCREENSHOT_DIR, name);

@@ -8,7 +8,7 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import {
-  checkPrerequisites, startServer, launchBrowser, openConsole, screenshot, waitForLinkState,
+  checkPrerequisites, startServer, launchBrowser, openConsole, screenshot, takeControl,
   REPO_DIR,
 } from './harness.mjs';
 
@@ -17,14 +17,6 @@ const SCENARIO = path.join(REPO_DIR, 'scenarios', 'sideways-drift-soft-sand.toml
 const TIMEOUT_MS = 30000;
 let server;
 let browser;
-
-async function takeControl(page) {
-  await page.click('#take-control');
-  await waitForLinkState(page, 'in-control', 3000);
-  // The take-over's stop holds until the input is neutral and the driver re-armed.
-  await page.waitForFunction(() => window.marsokhod.status?.stop_latched === false, null,
-    { timeout: 3000 });
-}
 
 before(async () => {
   checkPrerequisites();
