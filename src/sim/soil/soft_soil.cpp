@@ -83,7 +83,10 @@ namespace {
 struct RimClearance {
   const SoilGrid& grid;
   Vec3 axis_point, side, up;
-  double radius_m, bottom_m, touch_m;
+  double radius_m;
+  double lowest_m;  // the rim's bottom above the soil (< 0: in it)
+  double bottom_m;  // max(lowest_m, 0)
+  double touch_m;
 
   double height(double sin_theta, double cos_theta) const {
     const Vec3 rim = axis_point + (radius_m * sin_theta) * side - (radius_m * cos_theta) * up;
@@ -98,9 +101,9 @@ struct RimClearance {
 // rises above the soil further than it is above it at the bottom (a rim resting in its rebound
 // touches its whole bowl), interpolated between the steps so that it moves continuously with the
 // wheel; θ1 if it never does.
-double clearing_angle_rad(RimClearance clearance, double entry_rad) {
-  clearance.bottom_m = std::max(clearance.height(0.0, 1.0), 0.0);
-  double previous_theta = 0.0, previous = clearance(0.0, 1.0);
+double clearing_angle_rad(const RimClearance& clearance, double entry_rad) {
+  double previous_theta = 0.0;
+  double previous = clearance.lowest_m - clearance.bottom_m - clearance.touch_m;  // at θ = 0
   AngleSteps angle = AngleSteps::multiples(entry_rad / kExitSteps);
   for (int k = 1; k <= kExitSteps; ++k, angle.advance()) {
     const double theta = entry_rad * k / kExitSteps;
@@ -116,27 +119,27 @@ double clearing_angle_rad(RimClearance clearance, double entry_rad) {
 
 }  // namespace
 
-// θ2: the clearing angle behind the wheel, negative.
+// θ2: the clearing angle behind the wheel, negative. `entry_rad` is θ1 of the lane's sinkage,
+// `lowest_m` how far the rim's lowest point lies above the soil (< 0: in it).
 double SoftSoil::exit_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
-                                double radius_m, double sinkage_m) const {
-  const double entry = std::acos(1.0 - std::clamp(sinkage_m, 0.0, radius_m) / radius_m);
-  const RimClearance clearance{grid_,    axis_point, -1.0 * forward, up, radius_m, 0.0,
-                               exit_touch_m(grid_.spec().cell_m, radius_m)};
-  return -clearing_angle_rad(clearance, entry);
+                                double radius_m, double entry_rad, double lowest_m) const {
+  const double touch = exit_touch_m(grid_.spec().cell_m, radius_m);
+  const RimClearance clearance{grid_, axis_point, -1.0 * forward, up, radius_m, lowest_m,
+                               std::max(lowest_m, 0.0), touch};
+  return -clearing_angle_rad(clearance, entry_rad);
 }
 
 // θf: the clearing angle ahead of the wheel. Rolling into fresh soil the rim at θ1 lies in it (θ1
 // is where the undisturbed level meets the rim), and that one look settles it.
 double SoftSoil::front_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
-                                 double radius_m, double sinkage_m) const {
-  const double entry = std::acos(1.0 - std::clamp(sinkage_m, 0.0, radius_m) / radius_m);
+                                 double radius_m, double entry_rad, double lowest_m) const {
   const Vec3 lowest = axis_point - radius_m * up;
   const double rebound = grid_.touch_tolerance_m(lowest[0], lowest[1]);
-  RimClearance clearance{grid_,    axis_point, forward, up, radius_m, 0.0,
-                         std::max(rebound, exit_touch_m(grid_.spec().cell_m, radius_m))};
-  clearance.bottom_m = std::max(clearance.height(0.0, 1.0), 0.0);
-  if (clearance(std::sin(entry), std::cos(entry)) <= 0.0) return entry;
-  return clearing_angle_rad(clearance, entry);
+  const double touch = std::max(rebound, exit_touch_m(grid_.spec().cell_m, radius_m));
+  const RimClearance clearance{grid_, axis_point, forward, up, radius_m, lowest_m,
+                               std::max(lowest_m, 0.0), touch};
+  if (clearance(std::sin(entry_rad), std::cos(entry_rad)) <= 0.0) return entry_rad;
+  return clearing_angle_rad(clearance, entry_rad);
 }
 
 // Lane sinkages and (unless exit_rad is empty) exit angles into the spans, one per lane; the
@@ -161,16 +164,18 @@ int SoftSoil::find_lane_contacts(std::size_t wheel, const WheelKinematics& kinem
     const Vec3 lowest = axis_point - radius * up;
     const double surface = grid_.surface_m(lowest[0], lowest[1]);
     const double undisturbed = grid_.undisturbed_m(lowest[0], lowest[1]);
-    const double gap = std::max(lowest[2] - surface, 0.0);
+    const double above = lowest[2] - surface;  // the rim's bottom above the soil
+    const double gap = std::max(above, 0.0);
     const double depth =
         undisturbed - std::min(lowest[2], surface) - soil_.unloading_stiffness_ratio * gap;
     sinkage_m[lane] = depth * normal[2];
     if (sinkage_m[lane] > 0.0) {
+      const double entry = std::acos(1.0 - std::min(sinkage_m[lane], radius) / radius);  // θ1
       if (!exit_rad.empty()) {
-        exit_rad[lane] = exit_angle_rad(axis_point, forward, up, radius, sinkage_m[lane]);
+        exit_rad[lane] = exit_angle_rad(axis_point, forward, up, radius, entry, above);
       }
       if (!front_rad.empty()) {
-        front_rad[lane] = front_angle_rad(axis_point, forward, up, radius, sinkage_m[lane]);
+        front_rad[lane] = front_angle_rad(axis_point, forward, up, radius, entry, above);
       }
       ++touching;
     }

@@ -78,9 +78,9 @@ class SoftSoil {
 
  private:
   double exit_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
-                        double radius_m, double sinkage_m) const;
+                        double radius_m, double entry_rad, double lowest_m) const;
   double front_angle_rad(const Vec3& axis_point, const Vec3& forward, const Vec3& up,
-                         double radius_m, double sinkage_m) const;
+                         double radius_m, double entry_rad, double lowest_m) const;
   int find_lane_contacts(std::size_t wheel, const WheelKinematics& kinematics, const Vec3& normal,
                          std::span<double> sinkage_m, std::span<double> exit_rad,
                          std::span<double> front_rad) const;
