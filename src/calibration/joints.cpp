@@ -141,6 +141,7 @@ JointInitialisation initialise_joints(Bench& bench) {
   }
   init.duration_s = bench.last().time_s - start_s;
   init.timed_out = init.duration_s >= driver::kCalibrationTimeout_s;
+  init.dragged_rad = startup.over_travel_rad();
   bench.stop();
   for (std::size_t j = 0; j < 2; ++j) {
     init.travel_rad[j] = first.position_rad[kJoints[j]] - bench.last().position_rad[kJoints[j]];
@@ -148,12 +149,13 @@ JointInitialisation initialise_joints(Bench& bench) {
   return init;
 }
 
-JointMover::JointMover(const Bench& bench) {
+JointMover::JointMover(const Bench& bench, std::array<double, 2> dragged_rad) {
   for (std::size_t j = 0; j < 2; ++j) {
     const std::size_t motor = kJoints[j];
     backlash_rad_[j] = bench.params().motors.backlash_rad[motor];
-    // Procedure 4.3: p⁰ := p̄⁰ = ∓1.2121 with the shaft at the negative end of its gap.
-    joint_rad_[j] = bench.params().motors.initial_position_rad[motor];
+    // Procedure 4.3: p⁰ := p̄⁰ = ∓1.2121 with the shaft at the negative end of its gap, less the
+    // drag after the shaft met its joint.
+    joint_rad_[j] = bench.params().motors.initial_position_rad[motor] - dragged_rad[j];
     shaft_offset_rad_[j] = joint_rad_[j] - bench.last().position_rad[motor];
   }
 }

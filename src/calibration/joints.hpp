@@ -33,6 +33,9 @@ struct JointInitialisation {
   double duration_s = 0.0;
   std::array<double, 2> travel_rad{};  // p̄ moved toward the negative end (front, rear)
   bool timed_out = false;              // it took the full 3 s
+  // How far each shaft dragged its joint after they met (driver::Startup::over_travel_rad): the
+  // joints stand there below Remark 3.1's p⁰.
+  std::array<double, 2> dragged_rad{};
 };
 
 struct JointLimits {
@@ -60,10 +63,11 @@ JointInitialisation initialise_joints(Bench& bench);
 // Moves the joints to p6, p7 (the joints themselves, (4.1): p = P(p̄, p, b) with the configured
 // backlash) by a small closed loop on the shafts; the wheels stand still (on the stand they turn
 // freely). Starts from the state Procedure 4.3 leaves: the joints in vertical configuration, the
-// shafts at the negative end of their gaps, p = p̄ = ∓1.2121 (the bench's p̄ is offset to that).
+// shafts at the negative end of their gaps, p = p̄ = ∓1.2121 less what the start-up dragged them
+// (`dragged_rad`, JointInitialisation's; the bench's p̄ is offset to that).
 class JointMover {
  public:
-  explicit JointMover(const Bench& bench);
+  explicit JointMover(const Bench& bench, std::array<double, 2> dragged_rad = {});
   // Returns true when both joints are within tolerance_rad of their targets (then at rest),
   // false after timeout_s.
   bool move_to(Bench& bench, double front_rad, double rear_rad, double tolerance_rad = 0.015,

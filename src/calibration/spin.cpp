@@ -266,8 +266,8 @@ class SpinProcedure final : public Procedure {
         "Procedure 5.1: set the rover on flat ground of one texture with room to spin, joints in "
         "vertical configuration";
     bench.arrange(ground);
-    initialise_joints(bench);
-    JointMover mover(bench);
+    const JointInitialisation init = initialise_joints(bench);
+    JointMover mover(bench, init.dragged_rad);
     for (double c : spin_clearances_m()) {
       const double gamma = bending_for_clearance(c, geometry);
       arrange_on_stand(bench, "Procedure 5.1, c = " + fixed(c) +

@@ -217,13 +217,25 @@ MotionInput Driver::motion_input(double period_s) const {
   return in;
 }
 
-void Driver::reset_joint_positions() {
+// p⁰ := p̄⁰ of Remark 3.1, less how far each shaft dragged its joint toward the negative end
+// after they met (`dragged_rad`: front, rear; Startup::over_travel_rad), but inside (5.3). The
+// rear joint's drag is outward, below p7_min: it is taken at its bound, where (4.16) rests.
+// Outside, (4.16) pulls it in, for a few mrad with a duty too small to move it (0.014), and a
+// joint motor held at a duty keeps the rover from standing still: the gyro's null (3.4) is then
+// not learnt, and a square's heading drifted by 4.7 rad (odometry-square-hard, seed 18).
+void Driver::reset_joint_positions(std::array<double, 2> dragged_rad) {
   const tracking::MotorsSample& m = motors_.sample();
   MotorVector shaft{};
   for (std::size_t i = 0; i < kMotorCount; ++i) shaft[i] = m.position_rad[i] + position_offset_rad_[i];
-  for (std::size_t j : {kFrontJoint, kRearJoint}) {
-    position_offset_rad_[j] = params_->motors.initial_position_rad[j] - m.position_rad[j];
-    shaft[j] = params_->motors.initial_position_rad[j];
+  const std::array<std::size_t, 2> joints{kFrontJoint, kRearJoint};
+  const std::array<std::array<double, 2>, 2> bounds{
+      std::array<double, 2>{params_->joints.front_min_rad, params_->joints.front_max_rad},
+      std::array<double, 2>{params_->joints.rear_min_rad, params_->joints.rear_max_rad}};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::size_t j = joints[k];
+    shaft[j] = std::clamp(params_->motors.initial_position_rad[j] - dragged_rad[k], bounds[k][0],
+                          bounds[k][1]);
+    position_offset_rad_[j] = shaft[j] - m.position_rad[j];
   }
   motion_.reset_joint_positions(shaft);
   status_.joints_known = true;
@@ -302,7 +314,7 @@ const std::vector<protocol::CanFrame>& Driver::step(double time_s,
     if (joints_restored_) {
       take_up_joint_gaps();
     } else if (!startup_.continues_joints()) {
-      reset_joint_positions();  // Procedure 4.3: p⁰ := p̄⁰ of Remark 3.1
+      reset_joint_positions(startup_.over_travel_rad());  // Procedure 4.3
       status_.joint_origin = "Procedure 4.3";
     }
   }

@@ -67,7 +67,7 @@ class Driver {
   void update_faults(const OperatorInput* input);
   MotionInput motion_input(double period_s) const;
   MotorVector wanted_duties(double time_s, const MotionInput& input);
-  void reset_joint_positions();
+  void reset_joint_positions(std::array<double, 2> dragged_rad = {});
   void take_kept_joints();  // a restart: the kept state against the joints' first readings
   void hold_unknown_joints();
   void take_up_joint_gaps();

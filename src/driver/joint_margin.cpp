@@ -5,9 +5,25 @@
 #include <stdexcept>
 
 #include "core/adaptation/backlash.hpp"
+#include "core/adaptation/no_load_estimator.hpp"
+#include "core/tracking/clock.hpp"
 #include <string>
 
 namespace marsokhod::driver {
+
+double joint_dead_time_s(const Params& params) {
+  const ResponseParams& r =
+      adaptation::select_response(params.responses, params.cycle.period_s, params.cycle.con);
+  double weighted = 0.0;
+  double total = 0.0;
+  for (std::size_t j = 0; j < r.delta.size(); ++j) {
+    weighted += static_cast<double>(j) * r.delta[j];
+    total += r.delta[j];
+  }
+  const double h = params.cycle.period_s;
+  const double mean_delay_s = total > 0.0 ? h * weighted / total : 0.0;
+  return std::max(0.0, h + mean_delay_s - 0.5 * tracking::clock_overflow_period_s(params.cycle.con));
+}
 
 JointParams joint_bounds_with_backlash_margin(const JointParams& joints, const MotorParams& motors) {
   JointParams j = joints;

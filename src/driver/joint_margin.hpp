@@ -62,4 +62,14 @@ namespace marsokhod::driver {
 double run_on_limited_radps(double command_radps, double position_rad, double min_rad,
                             double max_rad, double run_on_s, double load_radps = 0.0);
 
+// The time from a joint command to the joint's motion, seen from the position the driver has:
+// µi samples p̄ when the request arrives and the driver gets it with the next cycle's frames
+// (one period h old), and the motor follows a new duty with its lag τ. The response table of
+// (4.4) measures the same chain up to the centre of µi's vel window: its mean delay
+// h·Σ j·δ^j (the thesis' indexing) is τ + T(con)/2. So the dead time is
+//   h + h·Σ j·δ^j − T(con)/2      (34 ms with the thesis' δ at 64 Hz: τ ≈ 18.5 ms).
+// The joint laws plan from the position predicted that far ahead, p + v·dead time: a joint
+// braking from 0.4 rad/s toward a bound otherwise passes it by 0.4 × 0.034 = 0.014 rad.
+double joint_dead_time_s(const Params& params);
+
 }  // namespace marsokhod::driver

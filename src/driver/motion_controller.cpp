@@ -59,27 +59,6 @@ adaptation::NoLoadEstimator driver_estimator(const Params& params) {
   return adaptation::NoLoadEstimator(response);
 }
 
-// The time from a joint command to the joint's motion, seen from the position the driver has:
-// µi samples p̄ when the request arrives and the driver gets it with the next cycle's frames
-// (one period h old), and the motor follows a new duty with its lag τ. The response table of
-// (4.4) measures the same chain up to the centre of µi's vel window: its mean delay
-// h·Σ j·δ^j (the thesis' indexing) is τ + T(con)/2. So the dead time is
-//   h + h·Σ j·δ^j − T(con)/2      (34 ms with the thesis' δ at 64 Hz: τ ≈ 18.5 ms).
-// The joint laws plan from the position predicted that far ahead, p + v·dead time: a joint
-// braking from 0.4 rad/s toward a bound otherwise passes it by 0.4 × 0.034 = 0.014 rad.
-double joint_dead_time_s(const Params& params) {
-  const ResponseParams& r =
-      adaptation::select_response(params.responses, params.cycle.period_s, params.cycle.con);
-  double weighted = 0.0;
-  double total = 0.0;
-  for (std::size_t j = 0; j < r.delta.size(); ++j) {
-    weighted += static_cast<double>(j) * r.delta[j];
-    total += r.delta[j];
-  }
-  const double h = params.cycle.period_s;
-  const double mean_delay_s = total > 0.0 ? h * weighted / total : 0.0;
-  return std::max(0.0, h + mean_delay_s - 0.5 * tracking::clock_overflow_period_s(params.cycle.con));
-}
 
 }  // namespace
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "driver/joint_margin.hpp"
+
 namespace marsokhod::driver {
 
 std::string_view phase_name(StartupPhase phase) {
@@ -15,7 +17,8 @@ std::string_view phase_name(StartupPhase phase) {
   return "?";
 }
 
-Startup::Startup(const Params& params) : params_(&params) {}
+Startup::Startup(const Params& params)
+    : params_(&params), run_on_s_(joint_dead_time_s(params) + params.cycle.period_s) {}
 
 void Startup::advance() {
   if (phase_ == StartupPhase::kConfigure &&
@@ -57,22 +60,57 @@ std::array<double, 2> Startup::calibrate(double time_s, const std::array<double,
   for (std::size_t j = 0; j < 2; ++j) {
     // The shaft moves toward the negative end of the gap; once it meets the joint it rests.
     const double u = params_->joints.backlash_uncertainty;
-    const double widest_gap = std::min((on_slope ? 1.0 - u : 1.0 + u) * gap[j], max_travel_rad_[j]);
+    const double gap_limit = (on_slope ? 1.0 - u : 1.0 + u) * gap[j];
+    const double widest_gap = std::min(gap_limit, max_travel_rad_[j]);
     const bool settled = time_s - calibration_start_s_ >= kEngagementSettle_s;
-    const bool slowed = std::abs(shaft_speed_radps[j]) <
-                        kEngagedSpeedShare * std::abs(no_load_speed_radps[j]);
-    if ((settled && slowed) || shaft_start_rad_[j] - shaft_rad[j] >= widest_gap) {
+    const double speed = std::abs(shaft_speed_radps[j]);
+    // A limit that keeps the joint inside (5.3) (the slope's narrowest gap, a restart's
+    // p̄ − p_min) is anticipated by how far the shaft runs on after the decision, perhaps
+    // dragging its joint: |w̄| over the dead time and the duty rule's last step (run_on_s_).
+    const bool keeps_bound = on_slope || max_travel_rad_[j] < gap_limit;
+    const double run_on = keeps_bound ? speed * run_on_s_ : 0.0;
+    const bool slowed = speed < kEngagedSpeedShare * std::abs(no_load_speed_radps[j]);
+    // Against the crossing's own free speed: the shaft meets its joint within a cycle or two of
+    // slowing (ν/2 alone lets a joint that gives way easily, a wheel on soft soil, go on for
+    // 0.1 s: 0.01 rad on the soft sand).
+    bool dropped = false;
+    bool slowing = false;  // below the free speed: the shaft is meeting its joint
+    if (settled && !gap_closed_[j]) {
+      const double free = free_samples_[j] > 0 ? free_speed_sum_[j] / free_samples_[j] : 0.0;
+      if (free_samples_[j] >= kMinFreeSamples && speed < kMetSpeedShare * free) {
+        dropped = true;
+      } else if (speed >= kFreeSpeedShare * free) {
+        free_speed_sum_[j] += speed;
+        ++free_samples_[j];
+        free_shaft_rad_[j] = shaft_rad[j];
+      }
+      slowing = free_samples_[j] > 0 && speed < kFreeSpeedShare * free;
+    }
+    if (!gap_closed_[j] && settled && (slowed || dropped)) {
       gap_closed_[j] = true;
+      met_[j] = free_samples_[j] > 0;
+    } else if (!gap_closed_[j] && shaft_start_rad_[j] - shaft_rad[j] + run_on >= widest_gap) {
+      gap_closed_[j] = true;  // at the travel limit, perhaps just as it met its joint
+      met_[j] = slowing;
     }
     duty[j] = gap_closed_[j] ? 0.0 : -params_->operator_input.calibration_duty;
     stopped = stopped && gap_closed_[j] && std::abs(shaft_speed_radps[j]) < kShaftStoppedRadps;
   }
+  last_shaft_rad_ = shaft_rad;
   const bool timed_out = time_s - calibration_start_s_ >= kCalibrationTimeout_s;
   if (stopped || timed_out) {
     phase_ = StartupPhase::kDone;
     return {0.0, 0.0};
   }
   return duty;
+}
+
+std::array<double, 2> Startup::over_travel_rad() const {
+  std::array<double, 2> travel{};
+  for (std::size_t j = 0; j < 2; ++j) {
+    if (met_[j]) travel[j] = std::max(0.0, free_shaft_rad_[j] - last_shaft_rad_[j]);
+  }
+  return travel;
 }
 
 }  // namespace marsokhod::driver

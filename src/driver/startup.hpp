@@ -5,18 +5,27 @@
 //   3. Procedure 4.3: both joint motors at d = −calibration_duty until each shaft has crossed
 //      its backlash gap toward the negative end (at most 3 s), then at rest until both shafts
 //      have stopped, then the joint positions are set to Remark 3.1's p̄⁰ = p⁰ (−1.2121,
-//      +1.2121) — set after the stop, so that no coasting is left to shift them. A shaft has
-//      crossed its gap when it meets its joint: the joint's weight slows it below half the
-//      no-load speed ν of its duty (measured: 0.13–0.15 rad/s free, 0.03–0.04 rad/s dragging
-//      the joint at d = −0.08), once ν has settled (kEngagementSettle_s). Travelling the
-//      configured b instead, as the thesis words it, drags the joint on by b − b_t on a unit
-//      whose true gap b_t is narrower (the rear joint out of (5.3) by up to 0.0375 rad), or stops
-//      short of the gap's end on a wider one; the measured meeting holds on every unit. If the
+//      +1.2121) less how far each shaft dragged its joint after they met (over_travel_rad();
+//      the driver keeps p inside (5.3)) — set after the stop, so that no coasting is left to
+//      shift them. A shaft has crossed its
+//      gap when it meets its joint: the joint's weight slows it below half the no-load speed ν
+//      of its duty (measured: 0.13–0.15 rad/s free, 0.03–0.04 rad/s dragging the joint at
+//      d = −0.08 on hard ground), once ν has settled (kEngagementSettle_s), or below
+//      kMetSpeedShare of its own free speed in the gap: on soft soil the wheels give way and the
+//      shaft drags its joint at 0.10–0.13 rad/s, which ν/2 found 0.1 s (0.01 rad) late. The
+//      drag is counted from the shaft's last free reading. Travelling the configured b instead,
+//      as the thesis words it, drags the joint on by b − b_t on a unit whose true gap b_t is
+//      narrower (the rear joint out of (5.3) by up to 0.0375 rad), or stops short of the gap's
+//      end on a wider one; the measured meeting holds on every unit. If the
 //      shaft never slows it stops after (1 + joints.backlash_uncertainty)·b, the widest gap —
 //      but on a slope (the accelerometer off the vertical by more than the slant dead band)
 //      after (1 − backlash_uncertainty)·b, the narrowest: there gravity may aid the shaft into
 //      its joint (the lock then brakes the joint at the motor's own speed, and nothing slows),
-//      and going on would drag the joint out of (5.3). Stopping short leaves the driver's p
+//      and going on would drag the joint out of (5.3). The limits that keep a joint inside
+//      (5.3) — that one and a restart's p̄ − p_min, below — are anticipated by the shaft's run-on
+//      after the decision, |w̄|·(dead time + h): on the soft sand a restarted shaft dragging its
+//      joint ran on 0.008 rad past p̄ − p_min (the hour's soak, seed 1: the rear joint 0.0103
+//      rad out of (5.3)). Stopping short leaves the driver's p
 //      below the truth by at most 2·uncertainty·b, on the safe side of the negative bounds, and
 //      exactly uncertainty·b above it on the positive side, which joint_margin.hpp covers;
 //   4. driving.
@@ -50,6 +59,12 @@ inline constexpr double kShaftStoppedRadps = 0.005;   // a shaft this slow has s
 // the motor's lag; before that w̄ < ν/2 says nothing.
 inline constexpr double kEngagementSettle_s = 0.15;
 inline constexpr double kEngagedSpeedShare = 0.5;  // w̄ below this share of ν: the gap is closed
+// The crossing's own speed: |w̄| at or above this share of its mean so far is the shaft still
+// free (the readings scatter by ±2.5 %, a count of 0.0017 rad/s at 0.15 rad/s) ...
+inline constexpr double kFreeSpeedShare = 0.92;
+// ... and below this share, after kMinFreeSamples free readings, the shaft has met its joint.
+inline constexpr double kMetSpeedShare = 0.85;
+inline constexpr int kMinFreeSamples = 3;
 
 class Startup {
  public:
@@ -78,10 +93,16 @@ class Startup {
                                   const std::array<double, 2>& no_load_speed_radps,
                                   bool on_slope = false);
 
+  // How far each shaft travelled toward the negative end after it met its joint (≥ 0): the
+  // joint went with it, from where Remark 3.1 has it (p̄⁰) to p̄⁰ − over_travel. 0 for a shaft
+  // that stopped without meeting its joint (the travel limits above).
+  std::array<double, 2> over_travel_rad() const;
+
  private:
   void advance();
 
   const Params* params_;
+  double run_on_s_;  // a shaft's run-on after a decision to stop it: the dead time + a cycle
   StartupPhase phase_ = StartupPhase::kConfigure;
   std::array<bool, kMotorCount> configured_{};
   bool continue_joints_ = false;
@@ -91,6 +112,13 @@ class Startup {
   std::array<double, 2> shaft_start_rad_{};
   std::array<bool, 2> gap_closed_{};
   std::array<double, 2> max_travel_rad_{kNoTravelLimit, kNoTravelLimit};
+  // The crossing's free speed: the mean |w̄| of its free readings and their count; the shaft's
+  // position at the last free reading (where it met its joint, once it has slowed); the latest.
+  std::array<double, 2> free_speed_sum_{};
+  std::array<int, 2> free_samples_{};
+  std::array<double, 2> free_shaft_rad_{};
+  std::array<bool, 2> met_{};
+  std::array<double, 2> last_shaft_rad_{};
 };
 
 }  // namespace marsokhod::driver

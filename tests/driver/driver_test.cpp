@@ -11,6 +11,7 @@
 #include "core/adaptation/backlash.hpp"
 #include "core/mobility/elementary_motion.hpp"
 #include "driver/duty_rules.hpp"
+#include "driver/joint_margin.hpp"
 #include "scripted_rover.hpp"
 
 namespace marsokhod::driver {
@@ -454,12 +455,19 @@ TEST_F(RestartDriverTest, ContinuesFromTheKeptJointsWithoutProcedure43) {
     const std::size_t j = k == 0 ? kFrontJoint : kRearJoint;
     const double moved = rover.shaft_rad[j] - shaft_at_reading[j];
     // The scripted shafts never meet a joint: the take-up ends after the widest gap, (1 + u)·b,
-    // or where the shaft reaches the joint's negative bound of (5.3) first (p̄ − p_min).
+    // or where the shaft reaches the joint's negative bound of (5.3) first (p̄ − p_min) — that
+    // one anticipated by the shaft's run-on after the decision, |w̄|·(dead time + h), which the
+    // scripted motors, stopping at once, do not have (|w̄| ≤ 0.16 rad/s at d = −0.08).
     const double p_min = k == 0 ? params.joints.front_min_rad : params.joints.rear_min_rad;
-    const double travel = std::min(
-        (1.0 + params.joints.backlash_uncertainty) * params.motors.backlash_rad[j],
-        kept.joints[k].shaft_rad - p_min);
-    EXPECT_LT(moved, -travel) << j;
+    const double gap_travel =
+        (1.0 + params.joints.backlash_uncertainty) * params.motors.backlash_rad[j];
+    const double bound_travel = kept.joints[k].shaft_rad - p_min;
+    if (bound_travel < gap_travel) {
+      EXPECT_LE(-moved, bound_travel) << j;
+      EXPECT_GT(-moved, bound_travel - 0.16 * (joint_dead_time_s(params) + 2 * kH)) << j;
+    } else {
+      EXPECT_LT(moved, -gap_travel) << j;
+    }
     EXPECT_GT(s.motors[j].shaft_position_rad, p_min - 0.01) << j;
     EXPECT_NEAR(s.motors[j].shaft_position_rad, kept.joints[k].shaft_rad + moved, 2 * kOneCount) << j;
     EXPECT_DOUBLE_EQ(s.motors[j].position_rad, s.motors[j].shaft_position_rad) << j;
@@ -536,6 +544,31 @@ TEST_F(RestartDriverTest, AStateKeptAsUnknownStaysUnknown) {
   EXPECT_FALSE(restarted.status().joints_known);
   EXPECT_EQ(restarted.status().joint_origin,
             "unknown: the driver before the restart did not know them either");
+}
+
+// Procedure 4.3 on soft ground: each shaft meets its joint (the front after 0.03 rad, the rear
+// after 0.20) and drags it at 0.8 of its speed, never slowing to ν/2. The start-up finds the
+// meeting against the crossing's own speed and counts the drag: the front joint, dragged inward,
+// stands that far below p⁰ = −1.2121 in the driver's p (to within a cycle's free travel); the
+// rear one, dragged outward below p7_min, is taken at its bound, where (4.16) rests: standing,
+// every duty is 0 (pulled in from outside, the rear motor would sit at a duty too small to move).
+TEST_F(DriverTest, Procedure43CountsTheFrontJointsDragAndTakesTheRearOneAtItsBound) {
+  rover.meets_joint_after_rad[kFrontJoint] = 0.03;
+  rover.meets_joint_after_rad[kRearJoint] = 0.20;
+  rover.dragging_speed_share = 0.8;
+  start_up();
+  EXPECT_EQ(driver.status().joint_origin, "Procedure 4.3");
+  const double front_dragged = rover.dragged_rad[kFrontJoint];
+  EXPECT_GT(front_dragged, 0.0);
+  EXPECT_LT(front_dragged, 0.01) << "found within a few cycles, not at the widest gap";
+  EXPECT_NEAR(driver.status().motors[kFrontJoint].position_rad,
+              params.motors.initial_position_rad[kFrontJoint] - front_dragged, 0.15 * kH);
+  EXPECT_GT(rover.dragged_rad[kRearJoint], 0.0);
+  EXPECT_LT(rover.dragged_rad[kRearJoint], 0.01);
+  EXPECT_DOUBLE_EQ(driver.status().motors[kRearJoint].position_rad, params.joints.rear_min_rad);
+  const OperatorInput stand = targets(0.0);
+  cycles(50, &stand);
+  for (std::size_t i = 0; i < kMotorCount; ++i) EXPECT_EQ(driver.status().motors[i].duty, 0.0) << i;
 }
 
 TEST_F(DriverTest, NothingIsKeptBeforeProcedure43HasEnded) {

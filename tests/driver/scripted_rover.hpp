@@ -34,6 +34,11 @@ class ScriptedRover {
   // vel reports the speed of the duty received this many requests earlier (0: of this very
   // request, as if the motor responded at once): a response chain δ = (0, …, 0, 1) of (4.4).
   int velocity_delay_cycles = 0;
+  // A joint shaft (6, 7) that has travelled this far toward the negative end meets its joint
+  // (0: never) and then drags it at dragging_speed_share of its speed; dragged_rad sums how far.
+  std::array<double, 8> meets_joint_after_rad{};
+  double dragging_speed_share = 1.0;
+  std::array<double, 8> dragged_rad{};
 
   // Applies one cycle's requests, moves the motors for dt, and returns the responses.
   std::vector<protocol::CanFrame> respond(const std::vector<protocol::CanFrame>& requests,
@@ -93,8 +98,12 @@ class ScriptedRover {
 
   protocol::ControlResponse move(std::uint8_t node, double dt_s) {
     Registers& r = reg_[node];
-    const double speed = adaptation::no_load_velocity(curve_, duty[node], params_.motors.scale[node],
-                                                      kSupplyV, params_.motors.nominal_supply_v);
+    double speed = adaptation::no_load_velocity(curve_, duty[node], params_.motors.scale[node],
+                                                kSupplyV, params_.motors.nominal_supply_v);
+    if (meets_joint_after_rad[node] > 0.0 && -shaft_rad[node] >= meets_joint_after_rad[node]) {
+      speed *= dragging_speed_share;
+      dragged_rad[node] += std::abs(speed) * dt_s;
+    }
     const bool dir = speed < 0.0;
     if (speed != 0.0 && dir != r.dir) {
       r.stp = wrap(r.pulses);
