@@ -181,12 +181,19 @@ TEST(JointMargin, ThePositiveBoundsComeInByTheGapsUncertaintyAsFarAsTheShaftHasC
   EXPECT_THROW(joint_bounds_with_backlash_margin(narrow, params.motors), std::invalid_argument);
 }
 
-// Procedure 4.3's meeting of shaft and joint: free at ν, the gap closes when w̄ < ν/2.
-TEST(StartupProcedure43, TheGapClosesWhereTheShaftMeetsItsJointNotAfterTheConfiguredGap) {
-  const Params params;
+// A start-up through its first two phases (every controller configured, µ8's switch armed):
+// Procedure 4.3 next.
+Startup calibrating(const Params& params) {
   Startup startup(params);
   for (std::size_t i = 0; i < kMotorCount; ++i) startup.on_configured(i);
   startup.on_dead_man_acknowledged();
+  return startup;
+}
+
+// Procedure 4.3's meeting of shaft and joint: free at ν, the gap closes when w̄ < ν/2.
+TEST(StartupProcedure43, TheGapClosesWhereTheShaftMeetsItsJointNotAfterTheConfiguredGap) {
+  const Params params;
+  Startup startup = calibrating(params);
   const double h = params.cycle.period_s;
   const double nu = -0.14;
   std::array<double, 2> shaft{-1.2121, 1.2121};
@@ -226,9 +233,7 @@ TEST(StartupProcedure43, TheGapClosesWhereTheShaftMeetsItsJointNotAfterTheConfig
 // the shaft ran on to the widest gap, 1.15·0.25, and dragged the joint 0.0875 rad.)
 TEST(StartupProcedure43, AJointThatGivesWayIsMetAgainstTheCrossingsOwnSpeedAndItsDragCounted) {
   const Params params;
-  Startup startup(params);
-  for (std::size_t i = 0; i < kMotorCount; ++i) startup.on_configured(i);
-  startup.on_dead_man_acknowledged();
+  Startup startup = calibrating(params);
   const double h = params.cycle.period_s;
   const double nu = -0.15;
   const std::array<double, 2> free_travel{0.03, 0.20};
@@ -262,9 +267,7 @@ TEST(StartupProcedure43, AJointThatGivesWayIsMetAgainstTheCrossingsOwnSpeedAndIt
 TEST(StartupProcedure43, OnASlopeAShaftThatNeverSlowsStopsAtTheNarrowestGap) {
   const Params params;
   for (const bool on_slope : {false, true}) {
-    Startup startup(params);
-    for (std::size_t i = 0; i < kMotorCount; ++i) startup.on_configured(i);
-    startup.on_dead_man_acknowledged();
+    Startup startup = calibrating(params);
     const double h = params.cycle.period_s;
     std::array<double, 2> shaft{-1.2121, 1.2121};
     std::array<double, 2> duty{-1.0, -1.0};
