@@ -7,10 +7,10 @@
 //      have stopped, then the joint positions are set to Remark 3.1's p̄⁰ = p⁰ (−1.2121,
 //      +1.2121) less how far each shaft dragged its joint after they met (over_travel_rad();
 //      the driver keeps p inside (5.3)) — set after the stop, so that no coasting is left to
-//      shift them. A shaft has crossed its
-//      gap when it meets its joint: the joint's weight slows it below half the no-load speed ν
-//      of its duty (measured: 0.13–0.15 rad/s free, 0.03–0.04 rad/s dragging the joint at
-//      d = −0.08 on hard ground), once ν has settled (kEngagementSettle_s), or below
+//      shift them. A shaft has crossed its gap when it meets its joint: the joint's weight
+//      slows it below half the no-load speed ν of its duty (measured: 0.13–0.15 rad/s free,
+//      0.03–0.04 rad/s dragging the joint at d = −0.08 on hard ground), once ν has settled
+//      (kEngagementSettle_s), or below
 //      kMetSpeedShare of its own free speed in the gap: on soft soil the wheels give way and the
 //      shaft drags its joint at 0.10–0.13 rad/s, which ν/2 found 0.1 s (0.01 rad) late. The
 //      drag is counted from the shaft's last free reading. Travelling the configured b instead,
