@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/mobility/lever_geometry.hpp"
 #include "core/protocol/codec.hpp"
 #include "driver/duty_rules.hpp"
 #include "driver/lcd.hpp"
@@ -228,13 +229,11 @@ void Driver::reset_joint_positions(std::array<double, 2> dragged_rad) {
   MotorVector shaft{};
   for (std::size_t i = 0; i < kMotorCount; ++i) shaft[i] = m.position_rad[i] + position_offset_rad_[i];
   const std::array<std::size_t, 2> joints{kFrontJoint, kRearJoint};
-  const std::array<std::array<double, 2>, 2> bounds{
-      std::array<double, 2>{params_->joints.front_min_rad, params_->joints.front_max_rad},
-      std::array<double, 2>{params_->joints.rear_min_rad, params_->joints.rear_max_rad}};
+  const std::array<mobility::JointBounds, 2> bounds{mobility::front_joint_bounds(params_->joints),
+                                                    mobility::rear_joint_bounds(params_->joints)};
   for (std::size_t k = 0; k < 2; ++k) {
     const std::size_t j = joints[k];
-    shaft[j] = std::clamp(params_->motors.initial_position_rad[j] - dragged_rad[k], bounds[k][0],
-                          bounds[k][1]);
+    shaft[j] = bounds[k].clamp(params_->motors.initial_position_rad[j] - dragged_rad[k]);
     position_offset_rad_[j] = shaft[j] - m.position_rad[j];
   }
   motion_.reset_joint_positions(shaft);
