@@ -245,12 +245,12 @@ struct NavigationParams {
   double min_spin_radps = 0.3;             // v2_min
   double heading_gain = 3.0;               // k_ψ: v2 [rad/s] per radian of heading error
   double look_ahead_m = 0.5;               // L: the heading aims back at the line this far ahead
-  double heading_tolerance_rad = 0.0087;   // a turn ends within this (0.5°)
+  double heading_tolerance_rad = 0.0087;   // over twice this off a turn is turned again (0.5°)
   double position_tolerance_m = 0.02;      // a leg ends within this along the line
   double turn_in_place_rad = 0.35;         // goto turns on the spot first beyond this (20°)
-  double settle_s = 3.0;                   // standing still this long ends a leg
-  double still_yaw_rate_radps = 0.03;      // still: |ω| and |speed|/r below this
-  double max_settle_s = 4.5;               // a leg's settling ends after this anyway
+  double settle_s = 4.5;                   // standing still this long ends a leg
+  double still_yaw_rate_radps = 0.03;      // still: |ω| below this, the driver judging standing
+  double max_settle_s = 6.0;               // a leg's settling ends after this anyway
   int max_corrections = 2;                 // legs driven again after ending off, per mission
   double no_progress_s = 10.0;             // no progress this long aborts the mission
 };

@@ -370,7 +370,7 @@ void Driver::update_mission(double time_s) {
     } else if (!is_neutral(targets_)) {
       missions_.abort("the operator took over", time_s);
     } else {
-      const navigation::DriveTargets t = missions_.update(status_.pose, time_s);
+      const navigation::DriveTargets t = missions_.update(status_.pose, time_s, gyro_still_);
       targets_.v1_radps = t.v1_radps;
       targets_.v2_radps = t.v2_radps;
     }

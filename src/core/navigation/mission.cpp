@@ -414,7 +414,7 @@ void MissionRunner::end_leg(const estimation::Pose& pose, double time_s) {
   best_error_s_ = time_s;
 }
 
-DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s) {
+DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s, bool stands) {
   if (!driving_mission()) return {};
   constexpr std::string_view kLaw = "MissionRunner::update";
   checks::law::require_finite(pose.x_m, kLaw, "x_m");
@@ -424,15 +424,18 @@ DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s) 
   checks::law::require_finite(pose.yaw_rate_radps, kLaw, "yaw_rate_radps");
   update_progress(pose);
   if (phase_ == Phase::kStand) {
-    if (!stood_still(pose, time_s)) return {};
+    if (!stood_still(pose, time_s, stands)) return {};
     phase_ = first_phase_;
     best_error_s_ = time_s;  // the no-progress time starts with the leg
   }
   if (phase_ == Phase::kTurn) {
     const double e = target_heading_rad_ - pose.heading_rad;
     if (!turn_sign_) turn_sign_ = sign(e);
-    if (std::abs(e) <= nav_.heading_tolerance_rad || sign(e) != *turn_sign_) {
-      // Within the tolerance, or past the target: settle.
+    if (e == 0.0 || sign(e) != *turn_sign_) {
+      // At the target, or past it: settle. Not already at the tolerance's near edge: a rover
+      // stopped on soft soil turns back as the soil's shear unloads (≈ 0.01 rad on sand), and a
+      // turn stopped short by the tolerance then ends more than twice the tolerance off, and so
+      // does every correction stopped the same way.
       phase_ = Phase::kSettle;
       settled_from_ = Phase::kTurn;
       settle_started_ = false;
@@ -467,7 +470,7 @@ DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s) 
     }
   }
   // Settling: zero targets until the rover has stood still for settle_s (or max_settle_s).
-  if (stood_still(pose, time_s)) {
+  if (stood_still(pose, time_s, stands)) {
     end_leg(pose, time_s);
     if (running()) update_progress(pose);
   }
@@ -476,10 +479,8 @@ DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s) 
 
 // Zero targets meanwhile: true once the rover has stood still for settle_s since the standing
 // began (settle_started_), or max_settle_s passed.
-bool MissionRunner::stood_still(const estimation::Pose& pose, double time_s) {
-  const double r = params_->geometry.wheel_radius_m;
-  const bool still = std::abs(pose.yaw_rate_radps) < nav_.still_yaw_rate_radps &&
-                     std::abs(pose.speed_mps) / r < nav_.still_yaw_rate_radps;
+bool MissionRunner::stood_still(const estimation::Pose& pose, double time_s, bool stands) {
+  const bool still = stands && std::abs(pose.yaw_rate_radps) < nav_.still_yaw_rate_radps;
   if (!settle_started_) {
     settle_started_ = true;
     settle_since_s_ = time_s;

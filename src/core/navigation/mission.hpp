@@ -23,11 +23,18 @@
 // μ is the ramp rate of (4.14) (operator.drive_rate_per_s): the ramp stops v1 within
 // v1²/(2μ) and the profile above asks for half that deceleration, so the rover stops where the
 // profile says. y_l is the rover's offset to the left of the leg's line, L the look-ahead: the
-// heading aims back at the line L metres ahead (pure pursuit). A leg ends when |e| ≤ the heading
-// tolerance or ρ ≤ the position tolerance; then the targets are zero until the rover has stood
-// still for settle_s (the gyro learns its null meanwhile, (3.4)), and a leg that ended more than
-// twice its tolerance off is driven again (at most max_corrections times). No progress (e or ρ
-// shrinking by less than 1 cm or 0.01 rad) for no_progress_s aborts the mission.
+// heading aims back at the line L metres ahead (pure pursuit). A turn ends when e reaches 0 (its
+// sign flips), a move when ρ ≤ the position tolerance (or its sign flips); then the targets are
+// zero until the rover has stood still for settle_s (the gyro learns its null meanwhile, (3.4)),
+// and a leg that ended more than twice its tolerance off (the heading tolerance for a turn) is
+// driven again (at most max_corrections times). A turn runs to its heading, not to the
+// tolerance's near edge: on soft soil a stopped rover turns back as the wheels' soil unloads, and
+// stopped at the edge it would end beyond twice the tolerance, every correction again. "Stood
+// still": the driver judges the rover standing (every bridge off, every motor slower than its
+// still threshold, the same judgement that feeds (3.4)) and |ω| < still_yaw_rate_radps. Not the
+// pose's speed: its distance counts the centre unit's pitch, and the accelerometer's noise makes
+// it read up to 1 cm/s at rest. No progress (e or ρ shrinking by less than 1 cm or 0.01 rad) for
+// no_progress_s aborts the mission.
 #pragma once
 
 #include <cstdint>
@@ -135,16 +142,17 @@ class MissionRunner {
   bool running() const { return status_.state == MissionState::kRunning; }
   bool driving_mission() const { return running() && status_.kind != MissionKind::kVelocity; }
 
-  // One cycle of a running turn/move/goto: the targets v1, v2 from the newest pose. Zero when
-  // no such mission runs. Throws std::invalid_argument on a non-finite pose.
-  DriveTargets update(const estimation::Pose& pose, double time_s);
+  // One cycle of a running turn/move/goto: the targets v1, v2 from the newest pose; `stands`:
+  // the driver judges the rover standing this cycle (above). Zero when no such mission runs.
+  // Throws std::invalid_argument on a non-finite pose.
+  DriveTargets update(const estimation::Pose& pose, double time_s, bool stands);
 
   const MissionStatus& status() const { return status_; }
 
  private:
   // kStand: before the first leg (first_phase_), until the rover has stood settle_s.
   enum class Phase { kStand, kTurn, kDrive, kSettle };
-  bool stood_still(const estimation::Pose& pose, double time_s);
+  bool stood_still(const estimation::Pose& pose, double time_s, bool stands);
   void begin_leg(const estimation::Pose& pose);
   void begin_turn(double target_heading_rad);
   void begin_drive(const estimation::Pose& pose);
