@@ -3,6 +3,7 @@
 // sim/soil (terrain 3: Wong–Reece forces per wheel on a deformable grid). The counter
 // real_time_factor is simulated seconds per wall-clock second. And the soil window's move
 // (SoilGrid::shift on the simulator's 600 × 300 cells by 4.5 m, as when the rover nears an edge).
+// BM_SoftSandTwoWide: the soft sand without the soil's AVX2 loop (sim/soil/wide.hpp).
 #include <benchmark/benchmark.h>
 
 #include <array>
@@ -15,6 +16,7 @@
 #include "sim/physics/rover_physics.hpp"
 #include "sim/physics/terrain_mjcf.hpp"
 #include "sim/soil/soil_grid.hpp"
+#include "sim/soil/wide.hpp"
 
 namespace marsokhod::sim {
 namespace {
@@ -54,6 +56,19 @@ void BM_RoverPhysicsStep(benchmark::State& state) {
   set_real_time_factor(state);
 }
 BENCHMARK(BM_RoverPhysicsStep)->ArgName("terrain")->Arg(0)->Arg(1)->Arg(2)->Arg(3);
+
+// The soft sand's step on the soil's two-wide loop alone (soil::wide::use(false)): what a
+// machine without AVX2 runs, the same numbers more slowly.
+void BM_SoftSandTwoWide(benchmark::State& state) {
+  soil::wide::use(false);
+  RoverPhysics physics(Params{}, terrain_for(3), kTimestepS);
+  physics.set_drive(cruise());
+  for (int i = 0; i < kBareSettleSteps; ++i) physics.step();
+  for (auto _ : state) physics.step();
+  soil::wide::use(true);
+  set_real_time_factor(state);
+}
+BENCHMARK(BM_SoftSandTwoWide);
 
 void BM_SoilWindowShift(benchmark::State& state) {
   soil::SoilGrid grid(kSoftSoilGrid, soil::dry_sand(), [](double, double) { return 0.0; });

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "sim/soil/angle_steps.hpp"
+#include "sim/soil/wide.hpp"
 
 namespace marsokhod::sim::soil {
 namespace {
@@ -18,17 +19,23 @@ double mobilised(double displacement_m, double shear_modulus_m) {
   return displacement_m < 0.0 ? -share : share;
 }
 
-// One step of shear displacement dj on soil displaced j. Loading (dj along j, or from j = 0)
-// follows Janosi–Hanamoto's curve; unloading (dj against j) is stiffer, ratio/K in the mobilised
-// share per metre, until the share reaches 0, and the rest of the step loads the other way.
-double sheared(double j, double dj, double inverse_K, double ratio) {
-  if (dj == 0.0 || j == 0.0 || (j > 0.0) == (dj > 0.0)) return j + dj;
+// The unloading branch of sheared(), out of line: the loading branch, nearly every sample's, is
+// an addition and inlines into the advection's loop.
+[[gnu::noinline]] double unloaded(double j, double dj, double inverse_K, double ratio) {
   const double remaining = exp_nonpositive(-std::abs(j) * inverse_K);  // 1 − share
   const double unload = (1.0 - remaining) / (ratio * inverse_K);
   const double d = std::abs(dj);
   if (d >= unload) return std::copysign(d - unload, dj);
   const double a = -std::log(remaining + ratio * d * inverse_K) / inverse_K;
   return std::copysign(a, j);
+}
+
+// One step of shear displacement dj on soil displaced j. Loading (dj along j, or from j = 0)
+// follows Janosi–Hanamoto's curve; unloading (dj against j) is stiffer, ratio/K in the mobilised
+// share per metre, until the share reaches 0, and the rest of the step loads the other way.
+inline double sheared(double j, double dj, double inverse_K, double ratio) {
+  if (dj == 0.0 || j == 0.0 || (j > 0.0) == (dj > 0.0)) return j + dj;
+  return unloaded(j, dj, inverse_K, ratio);
 }
 
 }  // namespace
@@ -187,7 +194,14 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
   double* along = share_along_.data();
   if (blades_.bladed) {
     const double inverse_K = strength_.inverse_shear_modulus_per_m;
-    for (int k = 0; k < samples; ++k) {
+    // Four at a time first where AVX2 is (the same bits), the rest two at a time.
+    const int four_wide =
+        wide::available()
+            ? wide::blade_shares(shear_t_.data() + base, shear_y_.data() + base, samples,
+                                 blade.across_t, blade.across_y, blade.along_t, blade.along_y,
+                                 inverse_K, across, along)
+            : 0;
+    for (int k = four_wide; k < samples; ++k) {
       const double jt = shear_t_[base + k], jy = shear_y_[base + k];
       const DoublePair shares = detail::mobilised(
           DoublePair{blade.across_displacement_m(jt, jy), blade.along_displacement_m(jt, jy)},

@@ -1,6 +1,6 @@
 // exp_nonpositive against std::exp: within 3 units in the last place over its range, exact at 0,
 // held at its floor below −708, NaN kept; its pair lane by lane the same bits; sin_cos against
-// std::sin and std::cos.
+// std::sin and std::cos; the blades' four-wide loop (wide.hpp) gives the two-wide form's bits.
 #include "sim/soil/fast_math.hpp"
 
 #include <gtest/gtest.h>
@@ -9,6 +9,10 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <vector>
+
+#include "sim/soil/wheel_stress.hpp"
+#include "sim/soil/wide.hpp"
 
 namespace marsokhod::sim::soil {
 namespace {
@@ -81,6 +85,36 @@ TEST(FastExp, APairGivesTheBitsOfTwoSingles) {
     const DoublePair pair = exp_nonpositive(DoublePair{a, b});
     ASSERT_EQ(pair[0], exp_nonpositive(a)) << a;
     ASSERT_EQ(pair[1], exp_nonpositive(b)) << b;
+  }
+}
+
+TEST(WideLoop, TheBladesSharesAreTheBitsOfTheTwoWideForm) {
+  if (!wide::available()) GTEST_SKIP() << "no AVX2 here: the two-wide form does all the work";
+  std::mt19937_64 random(18);
+  std::uniform_real_distribution<double> displacement(-0.08, 0.08);
+  const BladeFrame blade = blade_frame(BladeAxes{true, std::sin(0.24), std::cos(0.24)}, -1);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int count = 1 + trial % 30;
+    std::vector<double> jt(count), jy(count), across(count, -7.0), along(count, -7.0);
+    for (int k = 0; k < count; ++k) {
+      jt[k] = k % 11 == 3 ? 0.0 : displacement(random);
+      jy[k] = k % 13 == 5 ? -0.0 : (k % 17 == 2 ? 3.0 : 0.1 * displacement(random));
+    }
+    const int done = wide::blade_shares(jt.data(), jy.data(), count, blade.across_t,
+                                        blade.across_y, blade.along_t, blade.along_y, 80.0,
+                                        across.data(), along.data());
+    ASSERT_EQ(done, count / 4 * 4);
+    for (int k = 0; k < done; ++k) {
+      const DoublePair shares = detail::mobilised(
+          DoublePair{blade.across_displacement_m(jt[k], jy[k]),
+                     blade.along_displacement_m(jt[k], jy[k])},
+          80.0);
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(across[k]), std::bit_cast<std::uint64_t>(shares[0]))
+          << k;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(along[k]), std::bit_cast<std::uint64_t>(shares[1]))
+          << k;
+    }
+    for (int k = done; k < count; ++k) ASSERT_EQ(across[k], -7.0) << "past what it did";
   }
 }
 

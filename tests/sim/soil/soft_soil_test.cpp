@@ -9,6 +9,7 @@
 
 #include "../../support/invalid_argument.hpp"
 #include "sim/soil/wheel_stress.hpp"
+#include "sim/soil/wide.hpp"
 
 namespace marsokhod::sim::soil {
 namespace {
@@ -38,6 +39,34 @@ double run_vertical_rig(SoftSoil& soil, double spin_radps, double speed_mps, dou
     if (trace != nullptr) trace->push_back(wrenches[0]);
   }
   return z;
+}
+
+// The four-wide loop (wide.hpp) changes nothing but the time: a wheel set down, then driven at
+// 20 % slip through fresh soil and its own rut back, gives the same wrenches, bit for bit, as on
+// the two-wide form alone.
+TEST(SoftSoil, TheFourWideLoopGivesTheTwoWideFormsBits) {
+  if (!wide::available()) GTEST_SKIP() << "no AVX2 here: the two-wide form does all the work";
+  const auto run = [](bool four_wide) {
+    wide::use(four_wide);
+    SoftSoil soil = one_wheel_on_flat_sand();
+    std::vector<WheelWrench> trace;
+    run_vertical_rig(soil, 0.0, 0.0, 0.5, &trace);
+    run_vertical_rig(soil, 1.0, 0.1, 1.5, &trace);
+    run_vertical_rig(soil, -1.0, -0.1, 1.0, &trace);
+    wide::use(true);
+    return trace;
+  };
+  const std::vector<WheelWrench> four = run(true), two = run(false);
+  ASSERT_EQ(four.size(), two.size());
+  for (std::size_t i = 0; i < four.size(); ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      ASSERT_EQ(std::memcmp(&four[i].force_n[axis], &two[i].force_n[axis], sizeof(double)), 0)
+          << "step " << i << ", force " << axis;
+      ASSERT_EQ(std::memcmp(&four[i].torque_nm[axis], &two[i].torque_nm[axis], sizeof(double)), 0)
+          << "step " << i << ", torque " << axis;
+    }
+  }
+  EXPECT_GT(four.back().sinkage_m, 0.0);  // it ran in the soil
 }
 
 // A wheel set down on flat sand settles where Bekker's plate pressure under every point of its rim
