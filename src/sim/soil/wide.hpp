@@ -1,9 +1,10 @@
 // A four-wide (AVX2) form of the soil's most exponential-bound loop, for the machines that have
-// it: the blades' two mobilised shares of every arc sample, 432 exponentials a step for six
-// wheels. Each lane takes the same operations, in the same order, as the two-wide form of
-// fast_math.hpp and wheel_stress.hpp (no fused multiply-adds: -ffp-contract=off), so a run gives
-// the same bits whether or not its machine has AVX2 (tested bit for bit). Elsewhere, and on other
-// processors, available() is false and the two-wide form does all the work (BENCHMARKS.md).
+// it: the blades' two mobilised shares of every arc sample, 864 exponentials a step for six
+// wheels (3 lanes × 24 samples × 2 each). Each lane takes the same operations, in the same order,
+// as the two-wide form of fast_math.hpp and wheel_stress.hpp (no fused multiply-adds:
+// -ffp-contract=off), so a run gives the same bits whether or not its machine has AVX2 (tested
+// bit for bit). Elsewhere, and on other processors, available() is false and the two-wide form
+// does all the work (BENCHMARKS.md).
 #pragma once
 
 namespace marsokhod::sim::soil::wide {
