@@ -1,11 +1,13 @@
 #include "sim/soil/soft_soil.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 #include "sim/soil/angle_steps.hpp"
+#include "sim/soil/wide.hpp"
 
 namespace marsokhod::sim::soil {
 namespace {
@@ -58,6 +60,7 @@ SoftSoil::SoftSoil(SoilParams soil, GridSpec grid,
   lane_sinkage_.resize(lanes);
   lane_exit_.resize(lanes);
   lane_front_.resize(lanes);
+  lane_entry_.resize(lanes);
   excavation_m3_.assign(wheels.size(), 0.0);
   slip_play_.assign(wheels.size(), SlipPlay{});
 }
@@ -105,6 +108,33 @@ double clearing_angle_rad(const RimClearance& clearance, double entry_rad) {
   double previous_theta = 0.0;
   double previous = clearance.lowest_m - clearance.bottom_m - clearance.touch_m;  // at θ = 0
   AngleSteps angle = AngleSteps::multiples(entry_rad / kExitSteps);
+  if (wide::available()) {  // four looks at a time: the same angles and clearances, to the bit
+    static_assert(kExitSteps % 4 == 0);
+    const GridSpec& spec = clearance.grid.spec();
+    const wide::SurfaceView surface{clearance.grid.cell_surfaces_m(), spec.origin_x_m,
+                                    spec.origin_y_m, spec.cell_m, spec.cells_x, spec.cells_y};
+    std::array<double, 4> sines{}, cosines{}, clearances{};
+    for (int first = 1; first <= kExitSteps; first += 4) {
+      for (std::size_t j = 0; j < 4; ++j, angle.advance()) {
+        sines[j] = angle.sin();
+        cosines[j] = angle.cos();
+      }
+      wide::rim_clearances(surface, clearance.axis_point.data(), clearance.side.data(),
+                           clearance.up.data(), clearance.radius_m, clearance.bottom_m,
+                           clearance.touch_m, sines.data(), cosines.data(), clearances.data());
+      for (int j = 0; j < 4; ++j) {
+        const int k = first + j;
+        const double theta = entry_rad * k / kExitSteps;
+        const double current = clearances[static_cast<std::size_t>(j)];
+        if (current > 0.0) {
+          return previous_theta + (theta - previous_theta) * (-previous) / (current - previous);
+        }
+        previous_theta = theta;
+        previous = current;
+      }
+    }
+    return entry_rad;
+  }
   for (int k = 1; k <= kExitSteps; ++k, angle.advance()) {
     const double theta = entry_rad * k / kExitSteps;
     const double current = clearance(angle.sin(), angle.cos());
@@ -138,20 +168,24 @@ double SoftSoil::front_angle_rad(const Vec3& axis_point, const Vec3& forward, co
   const double touch = std::max(rebound, exit_touch_m(grid_.spec().cell_m, radius_m));
   const RimClearance clearance{grid_, axis_point, forward, up, radius_m, lowest_m,
                                std::max(lowest_m, 0.0), touch};
-  if (clearance(std::sin(entry_rad), std::cos(entry_rad)) <= 0.0) return entry_rad;
+  const SinCos at_entry = sin_cos(entry_rad);
+  if (clearance(at_entry.sin, at_entry.cos) <= 0.0) return entry_rad;
   return clearing_angle_rad(clearance, entry_rad);
 }
 
-// Lane sinkages and (unless exit_rad is empty) exit angles into the spans, one per lane; the
+// Lane sinkages and (unless their spans are empty) exit angles, front angles and the entry angles
+// θ1 they were searched over (0 where a lane is not in the soil) into the spans, one per lane; the
 // number of lanes in contact.
 int SoftSoil::find_lane_contacts(std::size_t wheel, const WheelKinematics& kinematics,
                                  const Vec3& normal, std::span<double> sinkage_m,
                                  std::span<double> exit_rad,
-                                 std::span<double> front_rad) const {
+                                 std::span<double> front_rad,
+                                 std::span<double> entry_rad) const {
   const WheelSoilContact& contact = contacts_.at(wheel);
   std::fill(sinkage_m.begin(), sinkage_m.end(), 0.0);
   std::fill(exit_rad.begin(), exit_rad.end(), 0.0);
   std::fill(front_rad.begin(), front_rad.end(), 0.0);
+  std::fill(entry_rad.begin(), entry_rad.end(), 0.0);  // θ1 = acos(1) of a lane not in the soil
   const Vec3 rolling = cross(kinematics.axle, normal);
   if (norm(rolling) < 1e-9) return 0;
   const Vec3 forward = (static_cast<double>(contact.direction()) / norm(rolling)) * rolling;
@@ -171,6 +205,7 @@ int SoftSoil::find_lane_contacts(std::size_t wheel, const WheelKinematics& kinem
     sinkage_m[lane] = depth * normal[2];
     if (sinkage_m[lane] > 0.0) {
       const double entry = std::acos(1.0 - std::min(sinkage_m[lane], radius) / radius);  // θ1
+      if (!entry_rad.empty()) entry_rad[lane] = entry;
       if (!exit_rad.empty()) {
         exit_rad[lane] = exit_angle_rad(axis_point, forward, up, radius, entry, above);
       }
@@ -207,9 +242,10 @@ std::vector<WheelWrench> SoftSoil::step(std::span<const WheelKinematics> wheels,
     const std::span<double> sinkage(lane_sinkage_.data(), lanes);
     const std::span<double> exit(lane_exit_.data(), lanes);
     const std::span<double> front(lane_front_.data(), lanes);
+    const std::span<double> entry(lane_entry_.data(), lanes);
     const Vec3 normal = ground_normal(wheels[i], i);
-    const int touching = find_lane_contacts(i, wheels[i], normal, sinkage, exit, front);
-    wrenches.push_back(contacts_[i].step(wheels[i], normal, sinkage, exit, front, dt_s));
+    const int touching = find_lane_contacts(i, wheels[i], normal, sinkage, exit, front, entry);
+    wrenches.push_back(contacts_[i].step(wheels[i], normal, sinkage, exit, front, entry, dt_s));
     const int carrying = wrenches.back().diagnostics.in_contact ? touching : 0;
     excavation_m3_[i] += carried_out_m3(i, wheels[i], normal, carrying, dt_s);
   }

@@ -83,7 +83,7 @@ class SoftSoil {
                          double radius_m, double entry_rad, double lowest_m) const;
   int find_lane_contacts(std::size_t wheel, const WheelKinematics& kinematics, const Vec3& normal,
                          std::span<double> sinkage_m, std::span<double> exit_rad,
-                         std::span<double> front_rad) const;
+                         std::span<double> front_rad, std::span<double> entry_rad = {}) const;
   double carried_out_m3(std::size_t wheel, const WheelKinematics& kinematics, const Vec3& normal,
                         int touching_lanes, double dt_s);
   void deform(std::size_t wheel, const WheelKinematics& kinematics, double excavated_m3);
@@ -91,7 +91,7 @@ class SoftSoil {
   SoilParams soil_;
   SoilGrid grid_;
   std::vector<WheelSoilContact> contacts_;
-  std::vector<double> lane_sinkage_, lane_exit_, lane_front_;
+  std::vector<double> lane_sinkage_, lane_exit_, lane_front_, lane_entry_;
   double yield_period_s_;
   double since_yield_s_ = 0.0;
   bool yielded_ = false;

@@ -115,6 +115,9 @@ class SoilGrid {
   Vec3 normal(double x_m, double y_m, double span_m) const;
 
   double cell_surface_m(int ix, int iy) const { return surface_[index(ix, iy)]; }
+  // Every cell's surface, row by row (cell (ix, iy) at iy·cells_x + ix): what surface_m
+  // interpolates, for a four-wide form of it (wide.hpp).
+  const double* cell_surfaces_m() const { return surface_.data(); }
   double cell_sinkage_m(int ix, int iy) const { return sinkage_[index(ix, iy)]; }
   double cell_compaction_m(int ix, int iy) const { return compaction_[index(ix, iy)]; }
   double cell_initial_m(int ix, int iy) const { return initial_[index(ix, iy)]; }

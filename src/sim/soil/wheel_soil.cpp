@@ -26,7 +26,10 @@ double mobilised(double displacement_m, double shear_modulus_m) {
   const double unload = (1.0 - remaining) / (ratio * inverse_K);
   const double d = std::abs(dj);
   if (d >= unload) return std::copysign(d - unload, dj);
-  const double a = -std::log(remaining + ratio * d * inverse_K) / inverse_K;
+  const double loaded = remaining + ratio * d * inverse_K;  // in (0, 1]: d < unload
+  const double a =
+      -(loaded >= std::numeric_limits<double>::min() ? log_positive(loaded) : std::log(loaded)) /
+      inverse_K;
   return std::copysign(a, j);
 }
 
@@ -65,6 +68,7 @@ WheelSoilContact::WheelSoilContact(SoilParams soil, WheelGeometry wheel)
   sample_sigma_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   share_across_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   share_along_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
+  unloading_.assign(2 * static_cast<std::size_t>(wheel_.arc_samples), 0);
 }
 
 double WheelSoilContact::lane_offset_m(int lane) const {
@@ -130,7 +134,25 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
   const int first = std::min(whole + 1, samples);  // the first sample fed from within the arc
   const double inverse_K = strength_.inverse_shear_modulus_per_m;
   const double ratio = soil_.unloading_stiffness_ratio;
-  for (int k = samples - 1; k >= first; --k) {
+  // Four at a time first where AVX2 is, while the samples load (the same bits), the rest one by
+  // one.
+  int last = samples - 1;
+  if (wide::available()) {
+    int unloading = 0;
+    last = wide::advect_loading(jt, jy, cosines_.data(), samples, first, whole, fraction,
+                                spin_term, travel_mps, dt_s, lateral_step, unloading_.data(),
+                                unloading);
+    for (int i = 0; i < unloading; ++i) {
+      const int k = unloading_[static_cast<std::size_t>(i)] / 2;
+      if (unloading_[static_cast<std::size_t>(i)] % 2 == 0) {
+        const double cosine = cosines_[static_cast<std::size_t>(k)];
+        jt[k] = sheared(jt[k], (spin_term - travel_mps * cosine) * dt_s, inverse_K, ratio);
+      } else {
+        jy[k] = sheared(jy[k], lateral_step, inverse_K, ratio);
+      }
+    }
+  }
+  for (int k = last; k >= first; --k) {
     const int at = k - whole;
     const double value_t = (1.0 - fraction) * jt[at] + fraction * jt[at - 1];
     const double value_y = (1.0 - fraction) * jy[at] + fraction * jy[at - 1];
@@ -211,7 +233,44 @@ void WheelSoilContact::add_lane_stresses(int lane, const ContactArc& arc, const 
     }
   }
   double fx = 0.0, fy = 0.0, fz = 0.0, mx = 0.0, my = 0.0, mz = 0.0;
-  for (int k = 0; k < samples; ++k) {
+  int k = 0;
+  if (blades_.bladed) {
+    // Four sums of each, over every fourth sample (four-wide where AVX2 is, the same operations
+    // one by one elsewhere: the same bits), then added pairwise; the rest below.
+    const wide::BladedSample sample{strength_.cohesion_pa, strength_.tan_friction,
+                                    strength_.tan_metal_friction, blade.across_t, blade.across_y,
+                                    blade.along_t, blade.along_y, r, rs, area};
+    wide::BladedSums sums{};
+    const int grouped = samples - samples % 4;
+    if (wide::available()) {
+      wide::bladed_sums(sample, sines, cosines, sigmas, across, along, samples, sums);
+    } else {
+      for (int i = 0; i < grouped; ++i) {
+        const auto j = static_cast<std::size_t>(i % 4);
+        const double s = sines[i], c = cosines[i], sigma = sigmas[i];
+        const SurfaceShear tau = bladed_shear(strength_, blade, sigma, across[i], along[i]);
+        const double normal = sigma * r * area, tangential = tau.tangential_pa * rs * area;
+        const double lateral = tau.lateral_pa * rs * area;
+        sums.fx[j] += tangential * c - normal * s;
+        sums.fz[j] += normal * c + tangential * s;
+        sums.fy[j] += lateral;
+        sums.my[j] -= tangential * rs;
+        sums.mx[j] += lateral * rs * c;
+        sums.mz[j] += lateral * rs * s;
+      }
+    }
+    const auto pairwise = [](const double (&lanes)[4]) {
+      return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
+    };
+    fx = pairwise(sums.fx);
+    fy = pairwise(sums.fy);
+    fz = pairwise(sums.fz);
+    mx = pairwise(sums.mx);
+    my = pairwise(sums.my);
+    mz = pairwise(sums.mz);
+    k = grouped;
+  }
+  for (; k < samples; ++k) {
     const double s = sines[k], c = cosines[k], sigma = sigmas[k];
     const SurfaceShear tau =
         blades_.bladed ? bladed_shear(strength_, blade, sigma, across[k], along[k])
@@ -288,10 +347,12 @@ WheelSoilContact::Frame WheelSoilContact::motion_frame(const WheelKinematics& ki
 WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3& ground_normal,
                                    std::span<const double> lane_sinkage_m,
                                    std::span<const double> lane_exit_rad,
-                                   std::span<const double> lane_front_rad, double dt_s) {
+                                   std::span<const double> lane_front_rad,
+                                   std::span<const double> lane_entry_rad, double dt_s) {
   const auto lanes = static_cast<std::size_t>(wheel_.lanes);
   if (lane_sinkage_m.size() != lanes || (!lane_exit_rad.empty() && lane_exit_rad.size() != lanes) ||
-      (!lane_front_rad.empty() && lane_front_rad.size() != lanes) || !(dt_s >= 0.0) ||
+      (!lane_front_rad.empty() && lane_front_rad.size() != lanes) ||
+      (!lane_entry_rad.empty() && lane_entry_rad.size() != lanes) || !(dt_s >= 0.0) ||
       !std::isfinite(dt_s)) {
     std::ostringstream message;
     message << "WheelSoilContact::step: expected " << wheel_.lanes
@@ -324,7 +385,10 @@ WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3
       front = -behind;
     }
     const ContactArc arc =
-        contact_arc(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit, front);
+        lane_entry_rad.empty()
+            ? contact_arc(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit, front)
+            : contact_arc_at_entry(soil_, wheel_.rim_radius_m, sinkage, frame.slip, exit, front,
+                                   lane_entry_rad[static_cast<std::size_t>(lane)]);
     if (!(sinkage > 0.0) || !(arc.front_rad > arc.exit_rad)) {
       // Released: the soil the rim left keeps no displacement.
       const auto first = static_cast<std::ptrdiff_t>(lane * wheel_.arc_samples);

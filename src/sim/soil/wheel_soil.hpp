@@ -79,7 +79,15 @@ class WheelSoilContact {
   // [0, θ1], or empty for θ1 (fresh soil ahead). ground_normal: unit, up.
   WheelWrench step(const WheelKinematics& kinematics, const Vec3& ground_normal,
                    std::span<const double> lane_sinkage_m, std::span<const double> lane_exit_rad,
-                   std::span<const double> lane_front_rad, double dt_s);
+                   std::span<const double> lane_front_rad, double dt_s) {
+    return step(kinematics, ground_normal, lane_sinkage_m, lane_exit_rad, lane_front_rad, {}, dt_s);
+  }
+  // lane_entry_rad (or none): each lane's θ1 as the caller took it from its sinkage,
+  // std::acos(1 − clamp(s, 0, r)/r), so that the contact need not take it again.
+  WheelWrench step(const WheelKinematics& kinematics, const Vec3& ground_normal,
+                   std::span<const double> lane_sinkage_m, std::span<const double> lane_exit_rad,
+                   std::span<const double> lane_front_rad, std::span<const double> lane_entry_rad,
+                   double dt_s);
   WheelWrench step(const WheelKinematics& kinematics, const Vec3& ground_normal,
                    std::span<const double> lane_sinkage_m, std::span<const double> lane_exit_rad,
                    double dt_s) {
@@ -125,6 +133,7 @@ class WheelSoilContact {
   // Per arc sample of the lane being summed: sin θ, cos θ, σ, the blades' mobilised shares
   // across and along (scratch of add_lane_stresses).
   std::vector<double> sample_sin_, sample_cos_, sample_sigma_, share_across_, share_along_;
+  std::vector<int> unloading_;  // the advection's unloading samples (wide::advect_loading)
 };
 
 }  // namespace marsokhod::sim::soil

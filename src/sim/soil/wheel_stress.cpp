@@ -21,10 +21,17 @@ double regularised_slip(double rim_speed_mps, double travel_speed_mps) {
 
 ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinkage_m, double slip,
                        double exit_rad, double front_rad) {
+  const double sinkage = std::clamp(sinkage_m, 0.0, rim_radius_m);
+  return contact_arc_at_entry(soil, rim_radius_m, sinkage_m, slip, exit_rad, front_rad,
+                              std::acos(1.0 - sinkage / rim_radius_m));
+}
+
+ContactArc contact_arc_at_entry(const SoilParams& soil, double rim_radius_m, double sinkage_m,
+                                double slip, double exit_rad, double front_rad, double entry_rad) {
   ContactArc arc;
   const double sinkage = std::clamp(sinkage_m, 0.0, rim_radius_m);
   arc.cos_entry = 1.0 - sinkage / rim_radius_m;
-  arc.entry_rad = std::acos(arc.cos_entry);
+  arc.entry_rad = entry_rad;
   arc.exit_rad = std::clamp(exit_rad, -arc.entry_rad, 0.0);
   arc.front_rad = std::clamp(front_rad, 0.0, arc.entry_rad);
   const double ratio =

@@ -31,6 +31,7 @@
 
 #include "sim/soil/fast_math.hpp"
 #include "sim/soil/soil_params.hpp"
+#include "sim/soil/wide.hpp"
 
 namespace marsokhod::sim::soil {
 
@@ -57,6 +58,10 @@ struct ContactArc {
 ContactArc contact_arc(const SoilParams& soil, double rim_radius_m, double sinkage_m, double slip,
                        double exit_rad = 0.0,
                        double front_rad = std::numeric_limits<double>::infinity());
+// The same with θ1 as the caller already took it, std::acos(1 − clamp(sinkage_m, 0, r)/r) (the
+// soil's lane search does: one arc cosine a lane instead of two).
+ContactArc contact_arc_at_entry(const SoilParams& soil, double rim_radius_m, double sinkage_m,
+                                double slip, double exit_rad, double front_rad, double entry_rad);
 
 // σ(θ) in Pa; 0 outside the arc. width_m is the wheel's full width b (Bekker's k_c/b).
 double normal_stress_pa(const SoilParams& soil, const ContactArc& arc, double rim_radius_m,
@@ -188,7 +193,9 @@ inline double normal_stress_from_cos_pa(double modulus_pa, const ContactArc& arc
   if (depth <= 0.0) return 0.0;
   const double n = arc.sinkage_exponent;
   if (n == 1.0) return modulus_pa * depth;
-  const double exponent = n * std::log(depth);  // < 0 while the depth is under 1 m
+  const double logarithm =
+      depth >= std::numeric_limits<double>::min() ? log_positive(depth) : std::log(depth);
+  const double exponent = n * logarithm;  // < 0 while the depth is under 1 m
   return modulus_pa * (exponent <= 0.0 ? exp_nonpositive(exponent) : std::exp(exponent));
 }
 
@@ -196,11 +203,15 @@ inline void normal_stresses_from_cos_pa(double modulus_pa, const ContactArc& arc
                                         double rim_radius_m, double* values, int count) {
   const double n = arc.sinkage_exponent;
   int k = 0;
+  if (n != 1.0 && wide::available()) {  // four at a time first: the same bits
+    k = wide::bekker_stresses(modulus_pa, arc.cos_entry, rim_radius_m, n, values, count);
+  }
   for (; k + 1 < count && n != 1.0; k += 2) {
     const double first = detail::bekker_depth_m(arc, rim_radius_m, values[k]);
     const double second = detail::bekker_depth_m(arc, rim_radius_m, values[k + 1]);
-    if (!(first > 0.0 && second > 0.0)) break;  // the rest one by one
-    const DoublePair exponent = {n * std::log(first), n * std::log(second)};
+    constexpr double kNormal = std::numeric_limits<double>::min();  // log_positive's domain
+    if (!(first >= kNormal && second >= kNormal)) break;  // the rest one by one
+    const DoublePair exponent = n * log_positive(DoublePair{first, second});
     if (!(exponent[0] <= 0.0 && exponent[1] <= 0.0)) break;
     const DoublePair power = exp_nonpositive(exponent);
     values[k] = modulus_pa * power[0];

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "physics_test_support.hpp"
+#include "sim/physics/rover_mjcf.hpp"
 #include "sim/physics/rover_physics.hpp"
 #include "sim/soil/soft_soil.hpp"
 
@@ -167,52 +168,84 @@ TEST(RoverSoftSoil, ClimbsTenDegreesButNotTwentyFive) {
 // The excavation of m4 (chapter 5.2, Field Experiment 6.3: "from a standing position, Marsokhod
 // excavates a layer of up to 9 cm of sand" with the front-right wheel turning slowly): the front-
 // right wheel alone at 1 rad/s, the others still. Slipping fully, its blades carry soil out of the
-// rut, the spoil slides back in from behind (repose), and it sinks, ≈ 1 mm/s at first; from
-// ≈ 70 s on its blade tips stay 9–10 cm below the sand's surface (0.125 m − its centre's height),
-// though it keeps spinning and slipping in its hole. Its other wheels stay within 1 cm of their
-// height. The rover creeps ahead on the spinning wheel's thrust, the five other wheels rolling
-// out of their bowls, and stops after ≈ 16 cm (140 s), against the 20 m its rim turns through.
+// rut, the spoil slides back in from behind (repose), and it sinks, ≈ 1 mm/s at first. The rover
+// creeps ahead on the spinning wheel's thrust (the five other wheels rolling out of their bowls),
+// 1–1.7 mm/s, and the hole goes with it: from 60 s on the blade tips hover 7.5–10.5 cm below the
+// sand's surface (0.125 m − the wheel centre's height), rising and sinking by a centimetre over
+// tens of seconds, and at times the wheel climbs half out (5.7 cm once). Now and then it plunges
+// deeper, until the front axle's capsule (r = 4 cm) comes down on the sand beside the hole and
+// holds it, 11.4–13.3 cm (without the axle's contact with the soil's height field it sank through:
+// tried); as the wheel sinks the axle tilts down with it, 3.5 cm clear of the sand at 7 cm deep,
+// 0.8 cm at 11 cm. Which a run does, and when, is chaotic: the same dig started 1 ms later takes
+// another course (24 runs measured, 12 of them on the axle at 160 s). So the dig runs from four
+// moments of the set-down, and each run holds what the physics makes of every one:
+// - it digs: more than 2 cm in the first 10 s; the other wheels stay within 1 cm of their height;
+// - it reaches the thesis' 9 cm: the deepest of its depths every 10 s from 60 to 160 s is 9 cm
+//   or more (9.7–13.3 cm in the runs measured);
+// - it goes deeper than 11 cm only where the front axle has come within 1 cm of the sand;
+// - one spinning wheel does not drive the rover: in 160 s it moves less than 1.5 % of the 20 m its
+//   rim turns through (15–26 cm in the runs measured; it stops only in some).
 // (Until 2026-11-29 the standing wheels' contact turned its frame at every 1 mm/s reversal, its
 // pressure profile with it: a spurious friction that held the rover within 2.3 cm in 70 s, and
-// before that a chatter of their arcs, exit_touch_m, within 1 cm.)
+// before that a chatter of their arcs, exit_touch_m, within 1 cm. Before the four runs, this test
+// ran the dig once and held it to 9–11 cm and to a stop: true of that run, not of the one started
+// 1 ms later.)
 TEST(RoverSoftSoil, TrenchWithTheFrontRightWheelDigsAboutNineCentimetres) {
-  RoverPhysics physics(Params{}, soft_flat());
-  run(physics, 2000);
-  const GroundTruth standing = physics.truth();
-  MotorVector trench{};
-  trench[kFrontRight] = 1.0;
-  physics.set_drive(drive_at(trench));
-  const auto blade_depth_m = [&] {
-    return 0.125 - physics.truth().wheel_position_m[kFrontRight][2];
-  };
-  const auto moved_m = [&] {
-    const GroundTruth now = physics.truth();
-    return std::hypot(now.position_m[0] - standing.position_m[0],
-                      now.position_m[1] - standing.position_m[1]);
-  };
-  const double at_rest = blade_depth_m();
-  run(physics, 10000);
-  const double after_10_s = blade_depth_m();
-  run(physics, 20000);
-  const GroundTruth after_30_s = physics.truth();
-  run(physics, 120000);
-  const double after_150_s = blade_depth_m();
-  const double moved_150_s = moved_m();
-  run(physics, 10000);
-  const double after_160_s = blade_depth_m();
-  const double moved_160_s = moved_m();
-  expect_healthy(physics);
-  EXPECT_GT(after_10_s - at_rest, 0.02);  // digging
-  EXPECT_NEAR(after_160_s, after_150_s, 0.003);  // and no deeper
-  EXPECT_GT(after_160_s, 0.07);
-  EXPECT_LT(after_160_s, 0.11);
-  for (std::size_t wheel : {kFrontLeft, kCenterLeft, kCenterRight, kBackLeft, kBackRight}) {
-    EXPECT_NEAR(after_30_s.wheel_position_m[wheel][2], standing.wheel_position_m[wheel][2], 0.01)
-        << kMotorNames[wheel];
+  constexpr double kRimSpeedMps = 0.125 * 1.0;  // the blade tips' radius at 1 rad/s
+  for (const int settle_ms : {0, 2, 4, 6}) {
+    SCOPED_TRACE(settle_ms);
+    RoverPhysics physics(Params{}, soft_flat());
+    run(physics, 2000 + settle_ms);
+    const GroundTruth standing = physics.truth();
+    MotorVector trench{};
+    trench[kFrontRight] = 1.0;
+    physics.set_drive(drive_at(trench));
+    const auto blade_depth_m = [&] {
+      return 0.125 - physics.truth().wheel_position_m[kFrontRight][2];
+    };
+    // The front axle's capsule above the soil's field: its lowest line, from its end beside the
+    // front-right wheel (the wheel's half width and 5 mm in) 30 cm toward the left wheel.
+    const auto axle_clearance_m = [&] {
+      const GroundTruth now = physics.truth();
+      const auto& right = now.wheel_position_m[kFrontRight];
+      const auto& left = now.wheel_position_m[kFrontLeft];
+      const double track = Params{}.geometry.track_width_m;
+      double clearance = 1.0;
+      for (int i = 0; i <= 20; ++i) {
+        const double share = (kWheelWidthM / 2 + 0.005 + 0.3 * i / 20.0) / track;
+        const double x = right[0] + (left[0] - right[0]) * share;
+        const double y = right[1] + (left[1] - right[1]) * share;
+        const double z = right[2] + (left[2] - right[2]) * share;
+        clearance = std::min(clearance, z - 0.04 - physics.terrain_height_m(x, y));
+      }
+      return clearance;
+    };
+    const double at_rest = blade_depth_m();
+    run(physics, 10000);
+    EXPECT_GT(blade_depth_m() - at_rest, 0.02);  // digging
+    run(physics, 20000);
+    const GroundTruth after_30_s = physics.truth();
+    for (std::size_t wheel : {kFrontLeft, kCenterLeft, kCenterRight, kBackLeft, kBackRight}) {
+      EXPECT_NEAR(after_30_s.wheel_position_m[wheel][2], standing.wheel_position_m[wheel][2], 0.01)
+          << kMotorNames[wheel];
+    }
+    run(physics, 30000);
+    double deepest = 0.0;
+    for (int seconds = 60; seconds <= 160; seconds += 10) {
+      const double depth = blade_depth_m();
+      deepest = std::max(deepest, depth);
+      if (depth > 0.11) {
+        EXPECT_LT(axle_clearance_m(), 0.01) << seconds << " s: " << depth;
+      }
+      if (seconds < 160) run(physics, 10000);
+    }
+    EXPECT_GT(deepest, 0.09);
+    expect_healthy(physics);
+    const GroundTruth end = physics.truth();
+    const double moved = std::hypot(end.position_m[0] - standing.position_m[0],
+                                    end.position_m[1] - standing.position_m[1]);
+    EXPECT_LT(moved, 0.015 * kRimSpeedMps * 160.0);
   }
-  // One spinning wheel does not drive the rover: it creeps a few centimetres and stops.
-  EXPECT_LT(moved_160_s, 0.25);
-  EXPECT_LT(moved_160_s - moved_150_s, 0.002);
 }
 
 // Checks that a vertical ray onto the terrain meets the soil's field where the grid's cells say,
