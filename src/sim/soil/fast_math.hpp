@@ -17,12 +17,12 @@
 // depth, two at a time, without glibc's call and errno wrapper (a third of the normal stresses'
 // instructions). x = 2^e · m, m ∈ [1, 2); the five leading bits of m's fraction pick
 // c_i = 1 + (i + ½)/32, whose rounded inverse (written out below) leaves r = m/c_i − 1 within
-// ±1/64, and ln x = e·ln 2 + ln c_i + ln(1 + r), ln c_i as −ln of the rounded inverse, correctly
+// ±1/65, and ln x = e·ln 2 + ln c_i + ln(1 + r), ln c_i as −ln of the rounded inverse, correctly
 // rounded, so that the inverse's rounding cancels; ln(1 + r) by its Taylor polynomial of degree 7
 // (truncation ≤ 3.9e-16 at |r| ≤ 1/65). Within 5e-16 absolutely where |ln x| < 1/2 (4.7e-16 met
-// near x = 1.031, where r is largest), and 4 units in the last place beyond (tested). Zero, negative, subnormal, infinite or NaN x are outside its domain
-// (wrong results, no undefined behaviour): the callers take std::log below the smallest normal
-// double.
+// near x = 1.031, where r is largest), and 4 units in the last place beyond (tested). Zero,
+// negative, subnormal, infinite or NaN x are outside its domain (wrong results, no undefined
+// behaviour): the callers take std::log below the smallest normal double.
 //
 // sin_cos: sin x and cos x together for |x| ≤ π/2 (every angle of a contact arc, and its steps),
 // by their Taylor polynomials, x·(1 − x²/3! + … ) to x²³ and 1 − x²/2! + … to x²² (truncation

@@ -356,9 +356,9 @@ WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3
       !std::isfinite(dt_s)) {
     std::ostringstream message;
     message << "WheelSoilContact::step: expected " << wheel_.lanes
-            << " lane sinkages (and as many exit and front angles, or none) and a finite dt_s >= 0,"
-            << " got " << lane_sinkage_m.size() << ", " << lane_exit_rad.size() << ", "
-            << lane_front_rad.size() << " and " << dt_s;
+            << " lane sinkages (and as many exit, front and entry angles, or none) and a finite"
+            << " dt_s >= 0, got " << lane_sinkage_m.size() << ", " << lane_exit_rad.size() << ", "
+            << lane_front_rad.size() << ", " << lane_entry_rad.size() << " and " << dt_s;
     throw std::invalid_argument(message.str());
   }
   const Vec3 rolling = cross(kinematics.axle, ground_normal);

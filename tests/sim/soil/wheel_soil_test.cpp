@@ -276,9 +276,12 @@ TEST(WheelSoil, RejectsBadInput) {
   test_support::expect_invalid_argument([&] { contact.step({}, kUp, two, kDt); },
                                         {"expected 3 lane sinkages", "got 2"});
   test_support::expect_invalid_argument([&] { contact.step({}, kUp, three, two, kDt); },
-                                        {"as many exit and front angles", "got 3, 2, 0"});
+                                        {"as many exit, front and entry angles", "got 3, 2, 0, 0"});
   test_support::expect_invalid_argument([&] { contact.step({}, kUp, three, three, two, kDt); },
-                                        {"as many exit and front angles", "got 3, 3, 2"});
+                                        {"as many exit, front and entry angles", "got 3, 3, 2, 0"});
+  test_support::expect_invalid_argument(
+      [&] { contact.step({}, kUp, three, three, three, two, kDt); },
+      {"as many exit, front and entry angles", "got 3, 3, 3, 2"});
   test_support::expect_invalid_argument([&] { contact.step({}, kUp, three, -1.0); }, {"dt_s >= 0"});
   SoilParams soil = dry_sand();
   soil.shear_modulus_m = -1.0;
