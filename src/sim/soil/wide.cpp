@@ -36,8 +36,12 @@ const double* const kLogTable = reinterpret_cast<const double*>(detail::kLogDivi
 // and the pointers above instead), so that no function compiled for AVX2 can stand in for a
 // header's inline one elsewhere: its helpers are its own. (The intrinsics of <immintrin.h> carry
 // their own target.)
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
 #pragma GCC push_options
 #pragma GCC target("avx2")
+#endif
 
 namespace {
 
@@ -235,7 +239,11 @@ int bekker_stresses(double modulus_pa, double cos_entry, double radius_m, double
   return k;
 }
 
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
 #pragma GCC pop_options
+#endif
 
 #else
 
