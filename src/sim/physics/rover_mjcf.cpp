@@ -147,10 +147,10 @@ void write_exterior_axle(XmlWriter& xml, const GeometryParams& geometry, const L
                      {"range", range(-kMaxAxleTiltRad, kMaxAxleTiltRad)},
                      {"damping", xml_number(kPassiveDampingNmsPerRad)}});
   const double half_track_m = geometry.track_width_m / 2;
-  const double beam_m = half_track_m - kWheelWidthM / 2 - 0.005;
+  const double beam_m = half_track_m - kWheelWidthM / 2 - kAxleEndGapM;
   xml.leaf("geom", {{"class", kRoverGeomClass},
                     {"type", "capsule"},
-                    {"size", "0.04"},
+                    {"size", xml_number(kAxleRadiusM)},
                     {"fromto", vec3(0.0, -beam_m, 0.0) + " " + vec3(0.0, beam_m, 0.0)},
                     {"mass", xml_number(kAxleMassKg)}});
   write_wheel(xml, side.left_wheel, half_track_m, geometry.wheel_radius_m);

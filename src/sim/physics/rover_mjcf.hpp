@@ -38,6 +38,10 @@ inline constexpr double kLeverMassKg = 2.0;   // each
 inline constexpr double kAxleMassKg = 3.0;    // each exterior axle beam
 inline constexpr double kWheelMassKg = 6.0;   // each
 inline constexpr double kWheelWidthM = 0.15;  // the 15 cm protective covers of chapter 3.1
+// Each exterior axle's beam: a capsule of this radius between its wheels, ending this far inside
+// each wheel's inner face.
+inline constexpr double kAxleRadiusM = 0.04;
+inline constexpr double kAxleEndGapM = 0.005;
 // The Maxon RE 36 rotor (67.7 g·cm²) seen through a gear of ≈ 250:1 (about 7000 rpm to the
 // 27 rpm of w = 2.827 rad/s): 6.77e-6 kg·m² · 250² ≈ 0.42 kg·m² at each motor's output shaft
 // (chapter 4.2: all eight motors and gears are alike). It dwarfs a wheel's own 0.05 kg·m² and

@@ -110,16 +110,14 @@ double clearing_angle_rad(const RimClearance& clearance, double entry_rad) {
   AngleSteps angle = AngleSteps::multiples(entry_rad / kExitSteps);
   if (wide::available()) {  // four looks at a time: the same angles and clearances, to the bit
     static_assert(kExitSteps % 4 == 0);
-    const GridSpec& spec = clearance.grid.spec();
-    const wide::SurfaceView surface{clearance.grid.cell_surfaces_m(), spec.origin_x_m,
-                                    spec.origin_y_m, spec.cell_m, spec.cells_x, spec.cells_y};
     std::array<double, 4> sines{}, cosines{}, clearances{};
     for (int first = 1; first <= kExitSteps; first += 4) {
       for (std::size_t j = 0; j < 4; ++j, angle.advance()) {
         sines[j] = angle.sin();
         cosines[j] = angle.cos();
       }
-      wide::rim_clearances(surface, clearance.axis_point.data(), clearance.side.data(),
+      wide::rim_clearances(clearance.grid.spec(), clearance.grid.cell_surfaces_m(),
+                           clearance.axis_point.data(), clearance.side.data(),
                            clearance.up.data(), clearance.radius_m, clearance.bottom_m,
                            clearance.touch_m, sines.data(), cosines.data(), clearances.data());
       for (int j = 0; j < 4; ++j) {

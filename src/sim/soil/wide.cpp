@@ -9,6 +9,7 @@
 #endif
 
 #include "sim/soil/fast_math.hpp"
+#include "sim/soil/soil_grid.hpp"
 
 namespace marsokhod::sim::soil::wide {
 
@@ -145,19 +146,20 @@ int blade_shares(const double* jt, const double* jy, int count, double across_t,
   return k;
 }
 
-void rim_clearances(const SurfaceView& surface, const double* axis, const double* side,
-                    const double* up, double radius_m, double bottom_m, double touch_m,
-                    const double* sines, const double* cosines, double* clearances_m) {
+void rim_clearances(const GridSpec& grid, const double* levels_m, const double* axis,
+                    const double* side, const double* up, double radius_m, double bottom_m,
+                    double touch_m, const double* sines, const double* cosines,
+                    double* clearances_m) {
   const Quad along = radius_m * load(sines), down = radius_m * load(cosines);
   const Quad x = (axis[0] + along * side[0]) - down * up[0];
   const Quad y = (axis[1] + along * side[1]) - down * up[1];
   const Quad z = (axis[2] + along * side[2]) - down * up[2];
   LowQuad x0, y0;
-  const Quad wx = cell_axis((x - surface.origin_x_m) / surface.cell_m - 0.5, surface.cells_x, x0);
-  const Quad wy = cell_axis((y - surface.origin_y_m) / surface.cell_m - 0.5, surface.cells_y, y0);
-  const LowQuad row = {surface.cells_x, surface.cells_x, surface.cells_x, surface.cells_x};
+  const Quad wx = cell_axis((x - grid.origin_x_m) / grid.cell_m - 0.5, grid.cells_x, x0);
+  const Quad wy = cell_axis((y - grid.origin_y_m) / grid.cell_m - 0.5, grid.cells_y, y0);
+  const LowQuad row = {grid.cells_x, grid.cells_x, grid.cells_x, grid.cells_x};
   const LowQuad first = y0 * row + x0;
-  const double* levels = surface.levels_m;
+  const double* levels = levels_m;
   const Quad at00 = gather(levels, first), at10 = gather(levels, first + 1);
   const Quad at01 = gather(levels, first + row), at11 = gather(levels, first + row + 1);
   const Quad level = (1.0 - wy) * ((1.0 - wx) * at00 + wx * at10) +
@@ -253,8 +255,8 @@ int blade_shares(const double*, const double*, int, double, double, double, doub
   return 0;
 }
 int bekker_stresses(double, double, double, double, double*, int) { return 0; }
-void rim_clearances(const SurfaceView&, const double*, const double*, const double*, double, double,
-                    double, const double*, const double*, double*) {}
+void rim_clearances(const GridSpec&, const double*, const double*, const double*, const double*,
+                    double, double, double, const double*, const double*, double*) {}
 void bladed_sums(const BladedSample&, const double*, const double*, const double*, const double*,
                  const double*, int, BladedSums&) {}
 int advect_loading(double*, double*, const double*, int samples, int, int, double, double, double,

@@ -10,6 +10,10 @@
 // processors, available() is false and those forms do all the work (BENCHMARKS.md).
 #pragma once
 
+namespace marsokhod::sim::soil {
+struct GridSpec;  // soil_grid.hpp
+}  // namespace marsokhod::sim::soil
+
 namespace marsokhod::sim::soil::wide {
 
 // Whether this process runs the four-wide loops: x86-64 with AVX2 (decided once), unless turned
@@ -32,22 +36,16 @@ int blade_shares(const double* jt, const double* jy, int count, double across_t,
 int bekker_stresses(double modulus_pa, double cos_entry, double radius_m, double exponent_n,
                     double* values, int count);
 
-// The soil's surface as SoilGrid::bilinear reads it: the cells' levels row by row (cell (ix, iy)
-// at iy·cells_x + ix) and where they lie.
-struct SurfaceView {
-  const double* levels_m;
-  double origin_x_m, origin_y_m, cell_m;
-  int cells_x, cells_y;
-};
-
 // A rim's clearance above the soil at four angles θ toward `side` from its bottom (sines and
 // cosines given): with the rim's point p = axis + (r·sin θ)·side − (r·cos θ)·up,
 // clearance = ((p_z − surface(p_x, p_y)) − bottom_m) − touch_m, the surface interpolated as
-// SoilGrid::surface_m does, every operation in its order: the same bits as
-// RimClearance::operator() in soft_soil.cpp (tested). Only when available().
-void rim_clearances(const SurfaceView& surface, const double* axis, const double* side,
-                    const double* up, double radius_m, double bottom_m, double touch_m,
-                    const double* sines, const double* cosines, double* clearances_m);
+// SoilGrid::surface_m does from the grid's cell levels (SoilGrid::cell_surfaces_m), every
+// operation in its order: the same bits as RimClearance::operator() in soft_soil.cpp (tested).
+// Only when available().
+void rim_clearances(const GridSpec& grid, const double* levels_m, const double* axis,
+                    const double* side, const double* up, double radius_m, double bottom_m,
+                    double touch_m, const double* sines, const double* cosines,
+                    double* clearances_m);
 
 // The shear displacement's transport along a lane's arc (WheelSoilContact::advect_lane), four
 // samples at a time from the last one back, k = samples − 1, samples − 2, … in groups of four

@@ -204,7 +204,7 @@ TEST(RoverSoftSoil, TrenchWithTheFrontRightWheelDigsAboutNineCentimetres) {
       return 0.125 - physics.truth().wheel_position_m[kFrontRight][2];
     };
     // The front axle's capsule above the soil's field: its lowest line, from its end beside the
-    // front-right wheel (the wheel's half width and 5 mm in) 30 cm toward the left wheel.
+    // front-right wheel (the wheel's half width and kAxleEndGapM in) 30 cm toward the left wheel.
     const auto axle_clearance_m = [&] {
       const GroundTruth now = physics.truth();
       const auto& right = now.wheel_position_m[kFrontRight];
@@ -212,11 +212,11 @@ TEST(RoverSoftSoil, TrenchWithTheFrontRightWheelDigsAboutNineCentimetres) {
       const double track = Params{}.geometry.track_width_m;
       double clearance = 1.0;
       for (int i = 0; i <= 20; ++i) {
-        const double share = (kWheelWidthM / 2 + 0.005 + 0.3 * i / 20.0) / track;
+        const double share = (kWheelWidthM / 2 + kAxleEndGapM + 0.3 * i / 20.0) / track;
         const double x = right[0] + (left[0] - right[0]) * share;
         const double y = right[1] + (left[1] - right[1]) * share;
         const double z = right[2] + (left[2] - right[2]) * share;
-        clearance = std::min(clearance, z - 0.04 - physics.terrain_height_m(x, y));
+        clearance = std::min(clearance, z - kAxleRadiusM - physics.terrain_height_m(x, y));
       }
       return clearance;
     };

@@ -200,8 +200,6 @@ TEST(WideLoop, TheRimsClearancesAreTheBitsOfOneByOne) {
   for (int iy = 0; iy < spec.cells_y; ++iy) {
     for (int ix = 0; ix < spec.cells_x; ++ix) grid.set_cell_surface_m(ix, iy, level(random));
   }
-  const wide::SurfaceView surface{grid.cell_surfaces_m(), spec.origin_x_m, spec.origin_y_m,
-                                  spec.cell_m, spec.cells_x, spec.cells_y};
   for (int trial = 0; trial < 20000; ++trial) {
     const Vec3 axis{place(random), place(random), 0.1 + 0.1 * unit(random)};
     const double heading = 3.2 * unit(random);
@@ -219,8 +217,8 @@ TEST(WideLoop, TheRimsClearancesAreTheBitsOfOneByOne) {
       sines = {0.0, 0.0, 0.0, 0.0};
       cosines = {1.0, 1.0, 1.0, 1.0};
     }
-    wide::rim_clearances(surface, axis.data(), side.data(), up.data(), 0.115, bottom, touch,
-                         sines.data(), cosines.data(), clearances.data());
+    wide::rim_clearances(spec, grid.cell_surfaces_m(), axis.data(), side.data(), up.data(), 0.115,
+                         bottom, touch, sines.data(), cosines.data(), clearances.data());
     for (std::size_t j = 0; j < 4; ++j) {
       const Vec3 rim = axis + (0.115 * sines[j]) * side - (0.115 * cosines[j]) * up;
       const double one = ((rim[2] - grid.surface_m(rim[0], rim[1])) - bottom) - touch;
