@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -115,6 +116,7 @@ SpinPoint spin_point(const SpinSweep& sweep, const SpinLimits& limits,
   point.time_s = sweep.samples[peak].time_s;
   point.turn_rate_radps = rate[peak];
   point.ratio = ratio_of(w);
+  point.measured = true;
   if (point.turn_rate_radps < limits.min_turn_rate_radps) {
     problems.push_back(at + "the rover hardly turned (|ω3| at most " +
                        fixed(point.turn_rate_radps) + " rad/s, at least " +
@@ -178,6 +180,35 @@ ProcedureResult fit_spin(const std::vector<SpinSweep>& sweeps, const SpinLimits&
                               " axle distances; the line needs at least " +
                               std::to_string(limits.min_clearances));
   }
+  // The line through the F̂, fitted once: reported whatever the checks below decide.
+  std::vector<double> c, f;
+  for (const SpinPoint& p : points) {
+    if (!p.measured) continue;
+    c.push_back(p.clearance_m);
+    f.push_back(p.ratio);
+  }
+  std::optional<LineFit> line;
+  std::string no_line;
+  try {
+    line = fit_line(c, f);
+  } catch (const std::invalid_argument& e) {
+    no_line = e.what();
+  }
+  // What the rover did, beside the thesis, whether or not the line is written: a refusal on a
+  // ground unlike the thesis' still says what F̂ the spin found there.
+  for (const SpinPoint& p : points) {
+    if (!p.measured) continue;
+    result.notes.push_back(
+        "c = " + fixed(p.clearance_m) + " m: F̂ = " + fixed(p.ratio) + " at the peak turning rate " +
+        fixed(p.turn_rate_radps) + " rad/s (τ = " + fixed(p.tau, 2) + "); the thesis' F(c) = " +
+        fixed(kThesisSpinSlopePerM * p.clearance_m + kThesisSpinOffset, 2));
+  }
+  if (line) {
+    result.notes.push_back("the line through F̂: " + fixed(line->gain, 2) + " c " +
+                           (line->offset < 0.0 ? "- " : "+ ") + fixed(std::abs(line->offset), 2) +
+                           " (rms " + fixed(line->residuals.rms) + "); the thesis': " +
+                           fixed(kThesisSpinSlopePerM, 1) + " c + " + fixed(kThesisSpinOffset, 2));
+  }
   for (const SpinPoint& p : points) {
     if (!(p.ratio > 1.0)) {
       result.problems.push_back("c = " + fixed(p.clearance_m) + " m: F̂ = " + fixed(p.ratio) +
@@ -189,38 +220,30 @@ ProcedureResult fit_spin(const std::vector<SpinSweep>& sweeps, const SpinLimits&
     add_recordings(result, sweeps, points, nullptr);
     return result;
   }
-  std::vector<double> c, f;
-  for (const SpinPoint& p : points) {
-    c.push_back(p.clearance_m);
-    f.push_back(p.ratio);
-  }
-  LineFit line;
-  try {
-    line = fit_line(c, f);
-  } catch (const std::invalid_argument& e) {
-    result.problems.push_back(std::string("no line: ") + e.what());
+  if (!line) {
+    result.problems.push_back("no line: " + no_line);
     add_recordings(result, sweeps, points, nullptr);
     return result;
   }
   result.quality["clearances"] = static_cast<double>(points.size());
-  result.quality["rms_residual"] = line.residuals.rms;
-  result.quality["max_residual"] = line.residuals.max_abs;
-  result.quality["r_squared"] = line.r_squared;
-  if (!(line.gain > 0.0)) {
-    result.problems.push_back("F̂ does not grow with c (slope " + fixed(line.gain) +
+  result.quality["rms_residual"] = line->residuals.rms;
+  result.quality["max_residual"] = line->residuals.max_abs;
+  result.quality["r_squared"] = line->r_squared;
+  if (!(line->gain > 0.0)) {
+    result.problems.push_back("F̂ does not grow with c (slope " + fixed(line->gain) +
                               " /m): chapter 5.1 expects a longer base to need faster exterior "
                               "wheels");
   }
-  if (line.residuals.rms > limits.max_rms_residual) {
-    result.problems.push_back("F̂ scatters about the line by " + fixed(line.residuals.rms) +
+  if (line->residuals.rms > limits.max_rms_residual) {
+    result.problems.push_back("F̂ scatters about the line by " + fixed(line->residuals.rms) +
                               " (rms; at most " + fixed(limits.max_rms_residual) +
                               "): uneven ground or a joint that moved");
   }
   toml::table spin;
-  spin.insert_or_assign("slope_per_m", line.gain);
-  spin.insert_or_assign("offset", line.offset);
+  spin.insert_or_assign("slope_per_m", line->gain);
+  spin.insert_or_assign("offset", line->offset);
   result.values.insert_or_assign("spin", std::move(spin));
-  add_recordings(result, sweeps, points, &line);
+  add_recordings(result, sweeps, points, &*line);
   return result;
 }
 

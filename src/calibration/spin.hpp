@@ -20,6 +20,11 @@
 
 namespace marsokhod::calibration {
 
+// The thesis' line, F(c) := 5.3c + 0.04 (chapter 5.1, fitted to Marsokhod's F̂ of Figure 5.4; the
+// configuration's [spin] default). Procedure 5.1 reports what it measures beside it.
+inline constexpr double kThesisSpinSlopePerM = 5.3;
+inline constexpr double kThesisSpinOffset = 0.04;
+
 // d(τ) of Procedure 5.1 (joints 0).
 MotorVector spin_duty(double tau);
 
@@ -51,6 +56,7 @@ struct SpinPoint {
   double tau = 0.0;              // where the turning rate peaked
   double time_s = 0.0;
   double turn_rate_radps = 0.0;  // |ω3| there (averaged like the wheel speeds)
+  bool measured = false;         // the sweep had the cycles to find a peak in
 };
 
 struct SpinLimits {
@@ -68,7 +74,9 @@ SpinPoint spin_point(const SpinSweep& sweep, const SpinLimits& limits,
                      std::vector<std::string>& problems);
 
 // F(c) from the sweeps; refuses too few clearances, a sweep whose rest was not still, unbracketed
-// peaks, F̂ ≤ 1, a line falling with c, or a poor line.
+// peaks, F̂ ≤ 1, a line falling with c, or a poor line. Accepted or not, its notes give each
+// sweep's F̂, peak turning rate and τ beside the thesis' F(c), and the line through the F̂ (from
+// two axle distances on) beside the thesis' line.
 ProcedureResult fit_spin(const std::vector<SpinSweep>& sweeps, const SpinLimits& limits = {});
 
 // One sweep on the ground as it stands: rests 1 s for the gyro's null rate, then ramps τ over

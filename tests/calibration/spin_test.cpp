@@ -247,6 +247,39 @@ TEST(SpinCalibration, TheFitOfSyntheticSweepsIsTheirLine) {
   EXPECT_NEAR(fitted.spin.offset, 0.04, 1e-9);
 }
 
+// Refused or not, the procedure says what the rover did beside the thesis' F(c) = 5.3c + 0.04:
+// each sweep's F̂ with its peak, and the line through them. Here F̂ = 0.9, 1.2, 1.5 at c = 0.40,
+// 0.45, 0.50 m: refused (F̂ ≤ 1 at 0.40), the line through them 6c − 1.5 exactly, the thesis'
+// 2.16, 2.425 and 2.69 there. A sweep too short to find a peak in is left out of both.
+TEST(SpinCalibration, ReportsEachFHatAndTheirLineBesideTheThesisEvenWhenRefused) {
+  const ProcedureResult refused = fit_spin({synthetic_sweep(0.4, 0.9, 0.5),
+                                            synthetic_sweep(0.45, 1.2, 0.5),
+                                            synthetic_sweep(0.5, 1.5, 0.5)});
+  EXPECT_FALSE(refused.accepted());
+  EXPECT_TRUE(mentions(refused.notes, "c = 0.400 m: F̂ = 0.900 at the peak turning rate 1.000 "
+                                      "rad/s (τ = 0.50); the thesis' F(c) = 2.16"))
+      << first(refused.notes);
+  EXPECT_TRUE(mentions(refused.notes, "c = 0.450 m: F̂ = 1.200")) << first(refused.notes);
+  EXPECT_TRUE(mentions(refused.notes, "the thesis' F(c) = 2.69")) << first(refused.notes);
+  EXPECT_TRUE(mentions(refused.notes, "the line through F̂: 6.00 c - 1.50 (rms 0.000); the "
+                                      "thesis': 5.3 c + 0.04"))
+      << first(refused.notes);
+  EXPECT_TRUE(refused.values.empty());
+
+  std::vector<SpinSweep> sweeps;
+  for (double c : {0.4, 0.45, 0.5}) sweeps.push_back(synthetic_sweep(c, 5.3 * c + 0.04, 0.5));
+  sweeps.push_back(synthetic_sweep(0.55, 3.0, 0.5, 50));
+  const ProcedureResult with_short = fit_spin(sweeps);
+  EXPECT_FALSE(with_short.accepted());
+  EXPECT_TRUE(mentions(with_short.notes, "the line through F̂: 5.30 c + 0.04 (rms 0.000)"))
+      << first(with_short.notes);
+  EXPECT_FALSE(mentions(with_short.notes, "c = 0.550 m")) << first(with_short.notes);
+  sweeps.pop_back();
+  const ProcedureResult accepted = fit_spin(sweeps);
+  ASSERT_TRUE(accepted.accepted()) << first(accepted.problems);
+  EXPECT_TRUE(mentions(accepted.notes, "the line through F̂: 5.30 c + 0.04")) << first(accepted.notes);
+}
+
 TEST(SpinCalibration, RefusesTooFewAxleDistancesAndShortSweeps) {
   const ProcedureResult few =
       fit_spin({synthetic_sweep(0.4, 2.2, 0.5), synthetic_sweep(0.5, 2.7, 0.5)});
