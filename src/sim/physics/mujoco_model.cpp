@@ -31,13 +31,14 @@ void copy_heightfield(mjModel& model, const Heightfield& field) {
   }
 }
 
-// The soil's field at the initial level everywhere (terrain_mjcf.hpp): no rise.
-void level_soil_field(mjModel& model) {
+// The soil's field at the ground's plane everywhere (terrain_mjcf.hpp): no rise. (On a heightfield
+// the soil model copies its initial surface in when the rover's physics is built.)
+void level_soil_field(mjModel& model, const TerrainSpec& terrain) {
   const int id = require_id(model, mjOBJ_HFIELD, kSoilFieldName);
   float* data = model.hfield_data + model.hfield_adr[id];
   const auto count = static_cast<std::size_t>(model.hfield_nrow[id]) *
                      static_cast<std::size_t>(model.hfield_ncol[id]);
-  std::fill(data, data + count, soil_field_elevation(0.0));
+  std::fill(data, data + count, soil_field_elevation(0.0, soil_field_above_m(terrain)));
 }
 
 }  // namespace
@@ -69,7 +70,7 @@ ModelPtr load_mjcf(const std::string& xml) {
 ModelPtr load_rover_model(const Params& params, const TerrainSpec& terrain, double timestep_s) {
   ModelPtr model = load_mjcf(rover_mjcf(params, terrain, timestep_s));
   if (terrain.kind == TerrainKind::kHeightfield) copy_heightfield(*model, terrain.heightfield);
-  if (terrain.ground.soil) level_soil_field(*model);
+  if (terrain.ground.soil) level_soil_field(*model, terrain);
   return model;
 }
 

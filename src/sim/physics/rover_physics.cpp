@@ -93,9 +93,9 @@ RoverPhysics::Impl::Impl(const Params& params_in, const TerrainSpec& terrain, do
     shaft_own_damping[motor] = model->dof_damping[ids.shaft_dof[motor]];
   }
   start_joints();
-  place_on_terrain(terrain);
   resolve_terrain_materials(terrain);
-  build_soft_soil(terrain);
+  build_soft_soil(terrain);  // first: the rover is set down on the soil's field (a heightfield's)
+  place_on_terrain(terrain);
   mj_forward(model.get(), data.get());
   if (soft_soil) update_soil_field();  // with the chassis where it now stands
 }

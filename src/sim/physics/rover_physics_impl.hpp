@@ -82,6 +82,7 @@ struct RoverPhysics::Impl {
   int soil_field = -1, soil_field_geom = -1;
   double soil_field_cos = 1.0;
   double soil_field_slope = 0.0;  // tan α of the ground's plane
+  double soil_field_above = 0.0;  // the field's top over the plane (soil_field_above_m)
   std::vector<double> soil_field_plane;  // the plane's height at each column's cells' centres
   std::array<double, 3> soil_field_normal{0.0, 0.0, 1.0};
   std::vector<int> soil_field_geoms;

@@ -6,8 +6,8 @@
 // old, as the skid sinkage's (rover_sinkage.cpp).
 //
 // The grid (kSoftSoilGrid, terrain_mjcf.hpp): a window of 2 cm cells, 12 m by 6 m, from x = −3 m
-// to 9 m and y = −3 m to 3 m around the start, at the ground's initial level (flat, or x·tan(slope)
-// on a slope). It follows the rover: when the chassis comes within kSoilWindowMarginM of an edge,
+// to 9 m and y = −3 m to 3 m around the start, at the ground's initial level (ground_level_m:
+// flat, x·tan(slope) on a slope, a heightfield's image). It follows the rover: when the chassis comes within kSoilWindowMarginM of an edge,
 // the window moves by whole cells to put the chassis back at its middle along that axis
 // (SoilGrid::shift: the ground it takes in is undisturbed, the ruts it leaves behind are
 // forgotten but for the books), and the height field's geom moves with it. Beyond the window the
@@ -60,13 +60,20 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   }
   const double slope_rad = ground_slope_rad(terrain);
   const double slope = std::tan(slope_rad);
-  soft_soil.emplace(
-      *terrain.ground.soil, kSoftSoilGrid, [slope](double x_m, double) { return x_m * slope; },
-      wheels);
+  if (terrain.kind == TerrainKind::kHeightfield) {
+    soft_soil.emplace(
+        *terrain.ground.soil, kSoftSoilGrid,
+        [terrain](double x_m, double y_m) { return ground_level_m(terrain, x_m, y_m); }, wheels);
+  } else {
+    soft_soil.emplace(
+        *terrain.ground.soil, kSoftSoilGrid, [slope](double x_m, double) { return x_m * slope; },
+        wheels);
+  }
   soil_field = require_id(*model, mjOBJ_HFIELD, kSoilFieldName);
   soil_field_geom = require_id(*model, mjOBJ_GEOM, kSoilFieldName);
   soil_field_cos = std::cos(slope_rad);
   soil_field_slope = slope;
+  soil_field_above = soil_field_above_m(terrain);
   place_soil_field_plane();
   soil_field_normal = {-std::sin(slope_rad), 0.0, std::cos(slope_rad)};
   for (int geom = 0; geom < model->ngeom; ++geom) {
@@ -74,8 +81,13 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
       soil_field_geoms.push_back(geom);
     }
   }
-  // The model was built with the field at the initial level (mujoco_model.cpp).
-  soft_soil->grid().clear_changed();
+  // The model was built with the field at the ground's plane (mujoco_model.cpp): the soil's initial
+  // level on a plane; a heightfield's relief goes in now.
+  if (terrain.kind == TerrainKind::kHeightfield) {
+    copy_soil_to_field();
+  } else {
+    soft_soil->grid().clear_changed();
+  }
 }
 
 // The ground's plane under each column of the window's cells.
@@ -118,7 +130,7 @@ void RoverPhysics::Impl::follow_with_soil_window() {
 // vertical in the grid, along the plane's normal in the field (×cos α; the vertex keeps its
 // place in the plane, δ·sin α·cos α downhill of the soil it stands for — under a millimetre for a
 // 5 cm rut on 1°, 8.6 mm on 10°), over the field's range from kSoilFieldBelowM below to
-// kSoilFieldAboveM above (clamped to it).
+// soil_field_above_m above (clamped to it).
 void RoverPhysics::Impl::copy_soil_to_field() {
   soil::SoilGrid& grid = soft_soil->grid();
   const soil::CellBox box = grid.changed();
@@ -131,7 +143,7 @@ void RoverPhysics::Impl::copy_soil_to_field() {
       const double rise =
           (grid.cell_surface_m(ix, iy) - soil_field_plane[static_cast<std::size_t>(ix)]) *
           soil_field_cos;
-      field[iy * columns + ix] = soil_field_elevation(rise);
+      field[iy * columns + ix] = soil_field_elevation(rise, soil_field_above);
     }
   }
   grid.clear_changed();
@@ -175,8 +187,8 @@ bool RoverPhysics::Impl::chassis_near_soil() const {
       }
     };
     const double lowest = n[0] * p[0] + n[1] * p[1] + n[2] * p[2] - reach(n);
-    // Above the field's top (its elevations end kSoilFieldAboveM over the plane): out of reach.
-    if (lowest > kSoilFieldAboveM + kSoilFieldReachM) continue;
+    // Above the field's top (its elevations end soil_field_above over the plane): out of reach.
+    if (lowest > soil_field_above + kSoilFieldReachM) continue;
     const double half_x = reach({1.0, 0.0, 0.0}), half_y = reach({0.0, 1.0, 0.0});
     const int x0 = cell(p[0] - half_x, spec.origin_x_m, spec.cells_x);
     const int x1 = cell(p[0] + half_x, spec.origin_x_m, spec.cells_x);
@@ -189,7 +201,7 @@ bool RoverPhysics::Impl::chassis_near_soil() const {
                                         soil_field_plane[static_cast<std::size_t>(ix)]);
       }
     }
-    if (lowest - std::min(highest, kSoilFieldAboveM) * soil_field_cos <= kSoilFieldReachM) {
+    if (lowest - std::min(highest, soil_field_above) * soil_field_cos <= kSoilFieldReachM) {
       return true;
     }
   }

@@ -304,12 +304,7 @@ void validate(const TerrainSpec& terrain) {
     validate_obstacle(terrain.obstacles[i], "obstacle " + std::to_string(i));
   }
   if (terrain.kind == TerrainKind::kHeightfield) validate_heightfield(terrain.heightfield);
-  if (terrain.ground.soil) {
-    require(terrain.kind != TerrainKind::kHeightfield,
-            "soft soil (sand, lunar-soil) needs flat or sloped ground, not a heightfield (use "
-            "rigid-sand there)");
-    soil::validate(*terrain.ground.soil);
-  }
+  if (terrain.ground.soil) soil::validate(*terrain.ground.soil);
 }
 
 TerrainSpec terrain_from_toml(const toml::table& terrain_table,

@@ -43,7 +43,8 @@ struct Material {
   double skid_sinkage = 0.0;          // extra friction of a skidding wheel (see above)
   // Soft soil (sim/soil): the wheels do not touch this ground in MuJoCo; the soil model's forces
   // act on them instead (rover_soft_soil.cpp). The chassis still meets it with the friction above.
-  // Ground of kind flat, slope or obstacles only; an obstacle ignores it (obstacles are rigid).
+  // Ground of any kind (on a heightfield the soil starts at the image's heights); an obstacle
+  // ignores it (obstacles are rigid).
   std::optional<soil::SoilParams> soil = std::nullopt;
 };
 

@@ -1,5 +1,6 @@
 #include "sim/physics/terrain_mjcf.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -84,10 +85,38 @@ void write_heightfield(XmlWriter& xml, const TerrainSpec& terrain) {
   attributes.emplace_back("name", "heightfield");
   attributes.emplace_back("type", "hfield");
   attributes.emplace_back("hfield", kHeightfieldName);
+  // Soft soil: like the plane, met by the chassis only, and under the soil's field.
+  if (terrain.ground.soil) {
+    attributes.emplace_back("conaffinity", "2");
+    attributes.emplace_back("pos", xml_numbers(std::array<double, 3>{0.0, 0.0, -kSoilFieldBelowM}));
+  }
   xml.leaf("geom", attributes);
 }
 
 }  // namespace
+
+double ground_level_m(const TerrainSpec& terrain, double x_m, double y_m) {
+  if (terrain.kind != TerrainKind::kHeightfield) return x_m * std::tan(ground_slope_rad(terrain));
+  const Heightfield& field = terrain.heightfield;
+  const GrayImage& image = field.image;
+  // In pixels from the field's (−x, −y) corner: column c at x = −size_x/2 + c·size_x/(width − 1).
+  const double column =
+      (x_m + 0.5 * field.size_x_m) / field.size_x_m * static_cast<double>(image.width - 1);
+  const double row =
+      (y_m + 0.5 * field.size_y_m) / field.size_y_m * static_cast<double>(image.height - 1);
+  if (!(column >= 0.0 && row >= 0.0 && column <= static_cast<double>(image.width - 1) &&
+        row <= static_cast<double>(image.height - 1))) {
+    return -kHeightfieldSurroundDropM;
+  }
+  const auto c0 = std::min(static_cast<std::size_t>(column), image.width - 2);
+  const auto r0 = std::min(static_cast<std::size_t>(row), image.height - 2);
+  const double u = column - static_cast<double>(c0), v = row - static_cast<double>(r0);
+  // MuJoCo's row r is the image's row height − 1 − r (copy_heightfield, mujoco_model.cpp).
+  const auto at = [&](std::size_t r, std::size_t c) { return image.at(image.height - 1 - r, c); };
+  const double value = (1.0 - v) * ((1.0 - u) * at(r0, c0) + u * at(r0, c0 + 1)) +
+                       v * ((1.0 - u) * at(r0 + 1, c0) + u * at(r0 + 1, c0 + 1));
+  return value * field.max_height_m;
+}
 
 std::array<double, 4> quaternion_from_roll_pitch_yaw(const std::array<double, 3>& rpy_rad) {
   const double cr = std::cos(rpy_rad[0] / 2), sr = std::sin(rpy_rad[0] / 2);
@@ -109,7 +138,7 @@ void write_terrain_assets(XmlWriter& xml, const TerrainSpec& terrain) {
               {"size", xml_numbers(std::array<double, 4>{
                            0.5 * (grid.cells_x - 1) * grid.cell_m / std::cos(slope_rad),
                            0.5 * (grid.cells_y - 1) * grid.cell_m,
-                           kSoilFieldBelowM + kSoilFieldAboveM, kSoilFieldBaseM})}});
+                           kSoilFieldBelowM + soil_field_above_m(terrain), kSoilFieldBaseM})}});
   }
   if (terrain.kind != TerrainKind::kHeightfield) return;
   const Heightfield& field = terrain.heightfield;
@@ -134,10 +163,13 @@ void write_terrain_geoms(XmlWriter& xml, const TerrainSpec& terrain) {
       if (terrain.ground.soil) write_soil_field(xml, terrain);
       break;
     }
-    case TerrainKind::kHeightfield:
+    case TerrainKind::kHeightfield: {
+      const double drop_m = terrain.ground.soil ? kSoilFieldBelowM : 0.0;
       write_heightfield(xml, terrain);
-      write_plane(xml, terrain.ground, {0.0, 0.0, -kHeightfieldSurroundDropM}, 0.0);
+      write_plane(xml, terrain.ground, {0.0, 0.0, -kHeightfieldSurroundDropM - drop_m}, 0.0);
+      if (terrain.ground.soil) write_soil_field(xml, terrain);
       break;
+    }
   }
   for (std::size_t i = 0; i < terrain.obstacles.size(); ++i) {
     write_obstacle(xml, terrain.obstacles[i], i);

@@ -21,9 +21,12 @@ inline constexpr double kHeightfieldBaseM = 0.1;  // the heightfield's thickness
 // to 3 m around the start, and a MuJoCo height field with a vertex at each cell's centre that
 // copies the grid's surface, so that the chassis meets the ruts and heaps the wheels leave (the
 // wheels themselves pass through it; the soil model carries them). The field spans the soil from
-// kSoilFieldBelowM under its initial level to kSoilFieldAboveM over it, along the ground's normal;
-// the ground plane lies kSoilFieldBelowM under the initial level, so that under the grid only the
-// field is met and beyond it the chassis still finds ground.
+// kSoilFieldBelowM under the ground's plane (z = 0, or x·tan α on a slope) to soil_field_above_m
+// over it, along the plane's normal: kSoilFieldAboveM over the ground's initial level, and on a
+// heightfield over its highest point (its white). The ground itself — the plane, or the
+// heightfield and the plane around it — lies kSoilFieldBelowM lower than it would on rigid
+// ground, so that under the grid only the field is met and beyond it the chassis still finds
+// ground.
 inline constexpr soil::GridSpec kSoftSoilGrid{-3.0, -3.0, 0.02, 600, 300};
 inline constexpr const char* kSoilFieldName = "soil";
 inline constexpr double kSoilFieldBelowM = 0.25;  // deeper than a wheel's radius: any hole it digs
@@ -34,10 +37,22 @@ inline constexpr double kSoilFieldBaseM = 0.05;   // the field's thickness under
 inline double ground_slope_rad(const TerrainSpec& terrain) {
   return terrain.kind == TerrainKind::kSlope ? terrain.slope_rad : 0.0;
 }
-// A vertex's datum in the soil's field for a rise (along the ground's normal) over the initial
-// level: its share of the field's range, clamped to it.
-inline float soil_field_elevation(double rise_m) {
-  const double share = (rise_m + kSoilFieldBelowM) / (kSoilFieldBelowM + kSoilFieldAboveM);
+// The ground's initial level under (x, y), world z: 0 on flat and obstacle ground, x·tan α on a
+// slope; on a heightfield its image's height, bilinear between the image's pixels as MuJoCo lays
+// them out (the field centred on the origin, its rows from −y up, the image's top row at +y;
+// MuJoCo's own triangles depart from it by under the image's curvature), and beyond its edges the
+// plane around it, kHeightfieldSurroundDropM down. Soft soil starts at this level.
+double ground_level_m(const TerrainSpec& terrain, double x_m, double y_m);
+// How far the soil's field reaches above the ground's plane: kSoilFieldAboveM over the ground's
+// highest initial level (0 on a plane, a heightfield's max_height_m).
+inline double soil_field_above_m(const TerrainSpec& terrain) {
+  return kSoilFieldAboveM +
+         (terrain.kind == TerrainKind::kHeightfield ? terrain.heightfield.max_height_m : 0.0);
+}
+// A vertex's datum in the soil's field for a rise (along the ground's normal) over the ground's
+// plane: its share of the field's range, kSoilFieldBelowM below to above_m above, clamped to it.
+inline float soil_field_elevation(double rise_m, double above_m) {
+  const double share = (rise_m + kSoilFieldBelowM) / (kSoilFieldBelowM + above_m);
   return static_cast<float>(share < 0.0 ? 0.0 : (share > 1.0 ? 1.0 : share));
 }
 

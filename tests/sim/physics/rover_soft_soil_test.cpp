@@ -13,6 +13,7 @@
 #include "physics_test_support.hpp"
 #include "sim/physics/rover_mjcf.hpp"
 #include "sim/physics/rover_physics.hpp"
+#include "sim/physics/terrain_mjcf.hpp"
 #include "sim/soil/soft_soil.hpp"
 
 namespace marsokhod::sim {
@@ -464,14 +465,77 @@ TEST(RoverSoftSoil, TwoRunsAreBitIdentical) {
   EXPECT_EQ(std::memcmp(first.data(), second.data(), sizeof(first)), 0);
 }
 
-TEST(RoverSoftSoil, SoftSoilNeedsFlatOrSlopedGround) {
+// Soft sand on a heightfield (since 2026-11-29): the soil starts at the image's heights and the
+// rover sinks into it as on flat sand. The image is a ramp along x, 9 × 5 pixels over 8 m × 6 m,
+// from black at x = −4 m to white (0.3 m) at 4 m: bilinear between its pixels that is the plane
+// z = 0.3·(x + 4)/8 (2.1°), which every cell of the soil's grid starts on. Set down and standing
+// 2 s, the centre wheels' rims are 1–3 cm into it, as on flat sand (StandsOnSoftSandAndSinksIn,
+// the ground's level under each wheel added); driven 2 s at 2 rad/s, they leave ruts, and the
+// soil's field, spanning the ramp's 0.3 m and the soil's range above and below it, holds the
+// grid: a vertical ray meets each cell's surface at its centre (to float's resolution over the
+// field's 0.7 m, 1e-7 m). Outside the image (the grid reaches x = 9 m) the soil starts on the plane
+// around it, 1 cm below black.
+TerrainSpec soft_ramp_heightfield() {
   TerrainSpec terrain;
   terrain.kind = TerrainKind::kHeightfield;
   terrain.ground = sand();
-  terrain.heightfield.image.width = 2;
-  terrain.heightfield.image.height = 2;
-  terrain.heightfield.image.values = {0.0, 0.0, 0.0, 0.0};
-  EXPECT_THROW(validate(terrain), std::invalid_argument);
+  terrain.heightfield.size_x_m = 8.0;
+  terrain.heightfield.size_y_m = 6.0;
+  terrain.heightfield.max_height_m = 0.3;
+  GrayImage& image = terrain.heightfield.image;
+  image.width = 9;
+  image.height = 5;
+  for (std::size_t row = 0; row < image.height; ++row) {
+    for (std::size_t column = 0; column < image.width; ++column) {
+      image.values.push_back(static_cast<double>(column) / 8.0);
+    }
+  }
+  return terrain;
+}
+
+TEST(RoverSoftSoil, OnAHeightfieldTheSoilStartsAtTheImageAndTheRoverSinksIn) {
+  const TerrainSpec terrain = soft_ramp_heightfield();
+  const auto ramp_m = [](double x_m) { return 0.3 * (x_m + 4.0) / 8.0; };
+  EXPECT_DOUBLE_EQ(ground_level_m(terrain, 4.5, 0.0), -0.01);  // beyond the image
+  EXPECT_DOUBLE_EQ(ground_level_m(terrain, 0.0, 3.5), -0.01);
+  RoverPhysics physics(Params{}, terrain);
+  const soil::SoilGrid& grid = physics.soft_soil()->grid();
+  const soil::GridSpec& spec = grid.spec();
+  for (int iy = 0; iy < spec.cells_y; iy += 37) {
+    for (int ix = 0; ix < spec.cells_x; ix += 23) {
+      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
+      const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
+      const double level = std::abs(x) < 4.0 && std::abs(y) < 3.0 ? ramp_m(x) : -0.01;
+      ASSERT_NEAR(grid.cell_surface_m(ix, iy), level, 1e-12) << x << ", " << y;
+      ASSERT_NEAR(physics.terrain_height_m(x, y), level, 1e-7) << x << ", " << y;
+    }
+  }
+  run(physics, 2000);
+  expect_healthy(physics);
+  const GroundTruth standing = physics.truth();
+  for (std::size_t wheel : {kCenterLeft, kCenterRight}) {
+    const double rim_depth =
+        ramp_m(standing.wheel_position_m[wheel][0]) + 0.115 - standing.wheel_position_m[wheel][2];
+    EXPECT_GT(rim_depth, 0.01) << kMotorNames[wheel];
+    EXPECT_LT(rim_depth, 0.03) << kMotorNames[wheel];
+  }
+  for (std::size_t wheel = 0; wheel < kWheelCount; ++wheel) {
+    EXPECT_TRUE(standing.wheel_contact[wheel]);
+  }
+  physics.set_drive(drive_at(all_wheels(2.0)));
+  run(physics, 2000);  // a multiple of the field's 10 ms: it holds the grid of this step
+  expect_healthy(physics);
+  EXPECT_GT(physics.truth().position_m[0] - standing.position_m[0], 0.1);
+  // y −1…1 m, x −1…2 m, against the ground's plane z = 0 (the field's on a heightfield).
+  expect_field_holds_grid(physics, 0.0, 100, 250, 100, 200);
+  double deepest_rut = 0.0;  // below the ramp
+  for (int iy = 100; iy < 200; ++iy) {
+    for (int ix = 100; ix < 250; ++ix) {
+      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
+      deepest_rut = std::max(deepest_rut, ramp_m(x) - grid.cell_surface_m(ix, iy));
+    }
+  }
+  EXPECT_GT(deepest_rut, 0.01);
 }
 
 }  // namespace
