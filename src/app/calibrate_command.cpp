@@ -59,7 +59,7 @@ std::optional<std::string> argument_problem(const CalibrateArgs& args,
     if (args.ground && !args.sim) return "--ground is for the simulated rover (--sim) only";
     if (args.ground && !sim::material_named(*args.ground)) {
       return "--ground " + *args.ground +
-             " is unknown; use hard, sand, rigid-sand, grass or lunar-soil";
+             " is unknown; use hard, sand, grass or lunar-soil";
     }
   } else if (args.from.empty()) {
     return "--from DIR is required (a scenario's --out folder with telemetry.csv)";

@@ -234,7 +234,7 @@ void add_calibrate_command(CLI::App& cli, Commands& c) {
   cmd->add_option("--plot", calibrate.plot, "write the measured data and plots here");
   cmd->add_option("--seed", calibrate.seed, "the simulated unit (--sim)")->check(kSeed);
   cmd->add_option("--ground", calibrate.ground,
-                  "the simulated ground (--sim): hard (default), sand, rigid-sand, grass, "
+                  "the simulated ground (--sim): hard (default), sand, grass, "
                   "lunar-soil");
   cmd->add_option("--duration", calibrate.duration_s,
                   "how long to measure [s] (motor-scale, response, voltage)")

@@ -126,20 +126,15 @@ TEST(ShippedScenarios, TheAxlePlacementWalksPastTheStallAtABlock) {
 
 // Chapter 6.3 and Field Experiment 6.6: with h^v (6.5) or h^s (6.6) "Marsokhod appeared to be
 // more powerful and to advance quicker" at low v1, and the redistributions "advance with less
-// erosion of the soil" (Theses): on the same climb each covers more ground than without, and its
-// wheels slip less on average.
-//
-// The comparison runs on the shipped files' 12° slope without their brick slab, on the rigid
-// `sand` material (MuJoCo contact with rolling friction and skid sinkage, sim/physics/terrain.hpp;
-// the files themselves are on the soft soil, compared in the next test). With the slab on that
-// sand all three variants stalled where the rear-left wheel, which starts behind the slab, met its
-// 2 cm edge: their distances differed by ≈ 5 mm (2 %), set by how far the rear joint's slant
-// response overshoots, which measures the step, not the redistribution. Without it, where the
-// low duty cycles (d ≈ 0.2) let the wheels slip and the redistribution has slip to even out, the
-// effect is large (seed 1: off 0.12 m, s 0.37 m, v 0.39 m; seeds 2 and 3 alike). Without the
-// redistribution the rover stalls there, and the stuck failsafe would stop it 3 s later and its
-// wheels' slip with it; the comparison is of the traction the redistribution gives a rover that
-// keeps trying, so all three run with the failsafe off (stuck_time_s = 0).
+// erosion of the soil" (Theses). The comparison runs on the shipped files' 12° slope without their
+// brick slab (with it, on the rigid contact sand had before the soil model, all three variants
+// stalled where the rear-left wheel met the slab's 2 cm edge, which measured the step, not the
+// redistribution). Without the redistribution the rover stalls there, and the stuck failsafe would
+// stop it 3 s later and its wheels' slip with it; the comparison is of the traction the
+// redistribution gives a rover that keeps trying, so all three run with the failsafe off
+// (stuck_time_s = 0). (Until 2026-11-29 it ran on that rigid sand too, where each redistribution
+// also made the wheels slip less on average; on the soft sand h^v does on 19 of seeds 1–20 and
+// h^s does not, on 18 of them: RELIABILITY.md.)
 Params keeps_trying() {
   Params params = shipped_params();
   params.safety.stuck_time_s = 0.0;
@@ -150,26 +145,6 @@ Scenario without_the_slab(const std::string& name) {
   Scenario scenario = load_scenario(kSourceDir / "scenarios" / (name + ".toml"));
   scenario.sim.terrain.obstacles.clear();
   return scenario;
-}
-
-Scenario on_loose_sand(const std::string& name) {
-  Scenario scenario = without_the_slab(name);
-  scenario.sim.terrain.ground = sim::rigid_sand();
-  return scenario;
-}
-
-TEST(ShippedScenarios, LoadDistributionAdvancesQuickerAndErodesLessOnLooseSand) {
-  RunOptions options;
-  options.plots = false;
-  const Params params = keeps_trying();
-  const ScenarioResult off = run_scenario(on_loose_sand("load-distribution-off"), params, options);
-  for (const char* variant : {"load-distribution-v", "load-distribution-s"}) {
-    const ScenarioResult r = run_scenario(on_loose_sand(variant), params, options);
-    EXPECT_GT(r.metrics.at("climb.forward_distance_m"), off.metrics.at("climb.forward_distance_m"))
-        << variant << "\n" << report(r) << report(off);
-    EXPECT_LT(r.metrics.at("climb.mean_abs_slip_mps"), off.metrics.at("climb.mean_abs_slip_mps"))
-        << variant << "\n" << report(r) << report(off);
-  }
 }
 
 // Chapter 6.3 on soft soil (sim/soil's Wong–Reece wheels on the deformable grid): the same climb

@@ -1,5 +1,7 @@
 // The cost of one physics step: RoverPhysics::step (joint modes, then mj_step) against a bare
-// mj_step on the same generated model, and on sand, a heightfield and the soft sand of
+// mj_step on the same generated model, and on grass (rolling friction, MuJoCo's condim 6; terrain
+// 1 was the rigid contact sand had before the soil model, gone since 2026-11-29), a heightfield
+// and the soft sand of
 // sim/soil (terrain 3: Wong–Reece forces per wheel on a deformable grid). The counter
 // real_time_factor is simulated seconds per wall-clock second. And the soil window's move
 // (SoilGrid::shift on the simulator's 600 × 300 cells by 4.5 m, as when the rover nears an edge).
@@ -25,7 +27,7 @@ constexpr double kTimestepS = 0.001;
 
 TerrainSpec terrain_for(int kind) {
   TerrainSpec terrain;
-  if (kind == 1) terrain.ground = rigid_sand();
+  if (kind == 1) terrain.ground = grass();  // rolling friction: MuJoCo's condim 6
   if (kind == 3) terrain.ground = sand();
   if (kind == 2) {
     // Gentle dunes on a 64 × 64 grid over 8 m × 8 m, up to 0.2 m.

@@ -93,7 +93,6 @@ RoverPhysics::Impl::Impl(const Params& params_in, const TerrainSpec& terrain, do
     shaft_own_damping[motor] = model->dof_damping[ids.shaft_dof[motor]];
   }
   start_joints();
-  resolve_terrain_materials(terrain);
   build_soft_soil(terrain);  // first: the rover is set down on the soil's field (a heightfield's)
   place_on_terrain(terrain);
   mj_forward(model.get(), data.get());
@@ -342,7 +341,6 @@ void RoverPhysics::step() {
   impl_->apply_strapped_weights();
   impl_->move_axle_hands();
   impl_->pin_axles_to_hands();
-  impl_->apply_skid_sinkage();
   impl_->apply_soft_soil();
   impl_->apply_motor_lines();
   mj_step(impl_->model.get(), impl_->data.get());

@@ -40,8 +40,6 @@ struct RoverPhysics::Impl {
   void update_joint_modes();
   void apply_joint_mode(std::size_t slot);
   void apply_joint_lock_brake(std::size_t slot, double no_load_speed_radps);
-  void resolve_terrain_materials(const TerrainSpec& terrain);
-  void apply_skid_sinkage();
   void build_soft_soil(const TerrainSpec& terrain);
   void apply_soft_soil();
 
@@ -55,9 +53,6 @@ struct RoverPhysics::Impl {
   // A jammed joint (set_joint_jammed): the joint's and the shaft's angles it is held at.
   std::array<std::optional<std::array<double, 2>>, 2> jammed_rad{};
   std::array<bool, 2> joint_overrun{};  // a pushing shaft ahead of ω0, braked by the lock
-  // Per geom: the terrain material's μ and skid sinkage (0 for the rover's own geoms).
-  std::vector<double> geom_ground_friction, geom_skid_sinkage;
-  std::array<double, kWheelCount> wheel_own_friction{};  // the wheels' geom μ as built
   std::array<std::array<double, 2>, 2> joint_stops_rad{}, shaft_stops_rad{};  // the model's ranges
   // Weights strapped to wheels (Procedure 4.13): peak gravity torque per wheel [N·m], 0 for none.
   std::array<double, kWheelCount> strapped_peak_torque_nm{};

@@ -3,7 +3,7 @@
 // wheel's centre, axle, velocity and spin go to the soil model and its force and torque come back
 // as xfrc_applied on the wheel body, the torque moved from the wheel's centre to its centre of
 // mass. The kinematics are those MuJoCo computed at the start of the last step, one step (1 ms)
-// old, as the skid sinkage's (rover_sinkage.cpp).
+// old.
 //
 // The grid (kSoftSoilGrid, terrain_mjcf.hpp): a window of 2 cm cells, 12 m by 6 m, from x = −3 m
 // to 9 m and y = −3 m to 3 m around the start, at the ground's initial level (ground_level_m:

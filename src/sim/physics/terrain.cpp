@@ -124,9 +124,13 @@ Material material_from(const toml::node* node, TableReader& owner, const Materia
     if (const std::optional<Material> named = material_named(*name)) return *named;
     owner.fail("material",
                "= \"" + *name +
-                   "\" is unknown; use \"hard\", \"sand\", \"rigid-sand\", \"grass\", "
-                   "\"lunar-soil\" or a table { friction = …, rolling_friction_m = … }" +
-                   (*name == "soft-sand" ? " (\"soft-sand\" is now called \"sand\")" : ""),
+                   "\" is unknown; use \"hard\", \"sand\", \"grass\", \"lunar-soil\" or a "
+                   "table { friction = …, rolling_friction_m = … }" +
+                   (*name == "soft-sand" ? " (\"soft-sand\" is now called \"sand\")" : "") +
+                   (*name == "rigid-sand"
+                        ? " (\"rigid-sand\", the rigid contact sand had before the soil model, "
+                          "is gone since 2026-11-29: \"sand\" is the soil model)"
+                        : ""),
                node);
   }
   const toml::table* table = node->as_table();
@@ -136,7 +140,6 @@ Material material_from(const toml::node* node, TableReader& owner, const Materia
   material.sliding_friction = reader.number("friction", 0.0, 10.0);
   material.torsional_friction_m = reader.number_or("torsional_friction_m", 0.0, 1.0, 0.0);
   material.rolling_friction_m = reader.number_or("rolling_friction_m", 0.0, 1.0, 0.0);
-  material.skid_sinkage = reader.number_or("skid_sinkage", 0.0, 10.0, 0.0);
   reader.reject_unknown_keys();
   return material;
 }
@@ -212,8 +215,7 @@ void validate_material(const Material& material, const std::string& where) {
   require(std::isfinite(material.sliding_friction) && material.sliding_friction >= 0.0 &&
               std::isfinite(material.torsional_friction_m) &&
               material.torsional_friction_m >= 0.0 && std::isfinite(material.rolling_friction_m) &&
-              material.rolling_friction_m >= 0.0 && std::isfinite(material.skid_sinkage) &&
-              material.skid_sinkage >= 0.0,
+              material.rolling_friction_m >= 0.0,
           where + " friction coefficients must be finite and not negative");
 }
 
@@ -249,14 +251,12 @@ void validate_heightfield(const Heightfield& field) {
 
 }  // namespace
 
-Material hard_ground() { return Material{0.9, 0.0, 0.0, 0.0}; }
+Material hard_ground() { return Material{0.9, 0.0, 0.0}; }
 
-Material rigid_sand() { return Material{0.5, 0.0, 0.02, 2.0}; }
-
-Material grass() { return Material{1.2, 0.0, 0.01, 0.0}; }
+Material grass() { return Material{1.2, 0.0, 0.01}; }
 
 Material sand() {
-  Material material{0.5, 0.0, 0.0, 0.0};
+  Material material{0.5, 0.0, 0.0};
   material.soil = soil::dry_sand();
   return material;
 }
@@ -265,13 +265,12 @@ std::optional<Material> material_named(std::string_view name) {
   if (name == "hard") return hard_ground();
   if (name == "grass") return grass();
   if (name == "sand") return sand();
-  if (name == "rigid-sand") return rigid_sand();
   if (name == "lunar-soil") return soft_lunar_soil();
   return std::nullopt;
 }
 
 Material soft_lunar_soil() {
-  Material material{0.5, 0.0, 0.0, 0.0};
+  Material material{0.5, 0.0, 0.0};
   material.soil = soil::lunar_soil();
   return material;
 }

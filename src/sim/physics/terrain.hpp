@@ -27,20 +27,13 @@ namespace marsokhod::sim {
 // wheel's rolling, at most rolling_friction_m · normal force. It is a resistance coefficient
 // C_rr times the wheel radius: C_rr = 0.16 on r = 0.125 m gives 0.02 m. Chosen over a
 // speed-proportional wheel damping because sand resists a slowly rolling wheel as much as a fast
-// one, and because it acts at the contact (a lifted wheel spins freely).
-//
-// Skid sinkage: a wheel that is dragged over loose ground faster than it turns (a rigid wheel,
-// Field Experiment 6.2) digs in and pushes a bank of sand ahead of it, which a rolling wheel rolls
-// over. RoverPhysics raises such a wheel's sliding friction by skid_sinkage · s, s ∈ [0, 1] the
-// skid ratio: along the wheel's heading, the speed at which its contact point slides the same way
-// as its hub moves, over the hub's speed (regularised below 1 cm/s). A fully skidding wheel
-// resists with (μ + skid_sinkage)·N in every direction; a rolling wheel, or a driving one whose
-// contact slides backwards under it (s = 0), with μ·N as before.
+// one, and because it acts at the contact (a lifted wheel spins freely). (Sand itself is the soil
+// model since issue #14: the rigid contact sand had before — μ 0.5, this rolling friction and a
+// "skid sinkage" that raised a skidding wheel's friction — is gone since 2026-11-29.)
 struct Material {
   double sliding_friction = 0.9;      // μ, Coulomb friction along the ground
   double torsional_friction_m = 0.0;  // resistance to spinning about the contact normal
   double rolling_friction_m = 0.0;    // rolling resistance (see above); > 0 selects condim 6
-  double skid_sinkage = 0.0;          // extra friction of a skidding wheel (see above)
   // Soft soil (sim/soil): the wheels do not touch this ground in MuJoCo; the soil model's forces
   // act on them instead (rover_soft_soil.cpp). The chassis still meets it with the friction above.
   // Ground of any kind (on a heightfield the soil starts at the image's heights); an obstacle
@@ -51,18 +44,13 @@ struct Material {
 // Hard ground (carpet-covered wheels on a lab floor, packed soil, rock): μ ≈ 0.9, no rolling loss,
 // no sinkage.
 Material hard_ground();
-// Rigid sand: the MuJoCo contact sand had before the soil model (sim/soil), kept for the
-// scenarios whose checks have not yet moved to the soil (docs/simulator.md says which and why):
-// μ = 0.5, a rolling resistance C_rr ≈ 0.16 (0.02 m on the 0.125 m wheel) and a skid sinkage of
-// 2, so that a rigid wheel dragged through it ploughs with 2.5 times its load.
-Material rigid_sand();
 // Grass (Field Experiment 5.6, the unmown meadow: "Turning the robot on grass was stressful; the
 // blades of the wheels were retained by the stems", while the rolking modes "were tested
 // successfully"): μ = 1.2, a third above hard ground, for a bladed wheel dragged across the turf
 // shears or bends the stems caught between its blades on top of the rim's Coulomb friction; a
 // rolling wheel lifts its blades out of the stems and meets only a rolling resistance
 // C_rr = 0.08 (0.01 m on the 0.125 m wheel: a rigid wheel on a meadow, between a lawn's 0.05 and
-// rigid sand's 0.16); no skid sinkage (the root mat carries the wheel, nothing is ploughed). Skid
+// the rigid contact sand had before the soil model, 0.16); nothing is ploughed. Skid
 // steering turns by dragging the exterior wheels sideways, so a spin meets μ·N at every wheel
 // that slides (a third more torque, a third more power), while driving straight rolls.
 Material grass();
@@ -70,7 +58,7 @@ Material grass();
 // chassis: sand is Wong's dry sand; the lunar soil is Ding et al.'s.
 Material sand();
 Material soft_lunar_soil();
-// The material of a terrain file's name: "hard", "sand", "rigid-sand", "grass" or "lunar-soil";
+// The material of a terrain file's name: "hard", "sand", "grass" or "lunar-soil";
 // nullopt for another name.
 std::optional<Material> material_named(std::string_view name);
 
@@ -121,10 +109,9 @@ void validate(const TerrainSpec& terrain);
 // is allowed. The keys (angles in degrees, lengths in metres):
 //
 //   kind = "flat" | "slope" | "obstacles" | "heightfield"
-//   material = "hard" | "sand" | "rigid-sand" | "grass" | "lunar-soil"
+//   material = "hard" | "sand" | "grass" | "lunar-soil"
 //            | { friction = 0.7, torsional_friction_m = 0.0,
-//                                  rolling_friction_m = 0.01,
-//                                  skid_sinkage = 0.0 }                  # optional, "hard"
+//                                  rolling_friction_m = 0.01 }           # optional, "hard"
 //   slope_deg = 15.0                       # kind = "slope": + is uphill driving +x
 //   image = "dunes.pgm"                    # kind = "heightfield": a P2/P5 PGM
 //   size_m = [8.0, 6.0]                    #   its extent along x (columns) and y (rows)

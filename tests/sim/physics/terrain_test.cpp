@@ -27,13 +27,10 @@ void expect_error(const std::string& text, const std::string& key, const std::st
   test_support::expect_invalid_argument([&] { read(text); }, {key, what});
 }
 
-TEST(TerrainMaterials, RigidSandIsSlipperierAndResistsRolling) {
+TEST(TerrainMaterials, HardGroundGripsAndDoesNotResistRolling) {
   EXPECT_DOUBLE_EQ(hard_ground().sliding_friction, 0.9);
   EXPECT_DOUBLE_EQ(hard_ground().rolling_friction_m, 0.0);
-  EXPECT_LT(rigid_sand().sliding_friction, hard_ground().sliding_friction);
-  EXPECT_GT(rigid_sand().rolling_friction_m, 0.0);
-  EXPECT_DOUBLE_EQ(hard_ground().skid_sinkage, 0.0);  // only loose ground lets a wheel dig in
-  EXPECT_GT(rigid_sand().skid_sinkage, 0.0);
+  EXPECT_FALSE(hard_ground().soil.has_value());
 }
 
 TEST(TerrainFromToml, FlatHardGroundByDefault) {
@@ -44,27 +41,19 @@ TEST(TerrainFromToml, FlatHardGroundByDefault) {
 }
 
 TEST(TerrainFromToml, NamedAndCustomMaterials) {
-  const TerrainSpec rigid = read("[terrain]\nkind = \"flat\"\nmaterial = \"rigid-sand\"\n");
-  EXPECT_DOUBLE_EQ(rigid.ground.sliding_friction, rigid_sand().sliding_friction);
-  EXPECT_DOUBLE_EQ(rigid.ground.skid_sinkage, rigid_sand().skid_sinkage);
-  EXPECT_FALSE(rigid.ground.soil.has_value());  // rigid sand is MuJoCo's contact
   const TerrainSpec custom = read(
       "[terrain]\nkind = \"flat\"\nmaterial = { friction = 0.7, rolling_friction_m = 0.01 }\n");
   EXPECT_DOUBLE_EQ(custom.ground.sliding_friction, 0.7);
   EXPECT_DOUBLE_EQ(custom.ground.torsional_friction_m, 0.0);
   EXPECT_DOUBLE_EQ(custom.ground.rolling_friction_m, 0.01);
-  EXPECT_DOUBLE_EQ(custom.ground.skid_sinkage, 0.0);
-  const TerrainSpec sinking =
-      read("[terrain]\nkind = \"flat\"\nmaterial = { friction = 0.5, skid_sinkage = 1.5 }\n");
-  EXPECT_DOUBLE_EQ(sinking.ground.skid_sinkage, 1.5);
+  EXPECT_FALSE(custom.ground.soil.has_value());
   EXPECT_TRUE(sand().soil.has_value());  // sand is the soil model's
   // Grass (Field Experiment 5.6): a third more sliding friction than hard ground, a rolling
-  // resistance C_rr = 0.01 m / 0.125 m = 0.08 (between a lawn's 0.05 and rigid sand's 0.16), no
-  // ploughing.
+  // resistance C_rr = 0.01 m / 0.125 m = 0.08 (between a lawn's 0.05 and the 0.16 of the rigid
+  // contact sand had before the soil model).
   const TerrainSpec meadow = read("[terrain]\nkind = \"flat\"\nmaterial = \"grass\"\n");
   EXPECT_DOUBLE_EQ(meadow.ground.sliding_friction / hard_ground().sliding_friction, 4.0 / 3.0);
   EXPECT_DOUBLE_EQ(meadow.ground.rolling_friction_m / 0.125, 0.08);
-  EXPECT_DOUBLE_EQ(meadow.ground.skid_sinkage, 0.0);
   EXPECT_FALSE(meadow.ground.soil.has_value());
 }
 
@@ -137,7 +126,7 @@ TEST(TerrainFromToml, HeightfieldImageRelativeToTheScenario) {
   const TerrainSpec terrain = read(R"(
 [terrain]
 kind = "heightfield"
-material = "rigid-sand"
+material = "sand"
 image = "dune.pgm"
 size_m = [6.0, 4.0]
 max_height_m = 0.3
@@ -150,6 +139,7 @@ max_height_m = 0.3
   EXPECT_DOUBLE_EQ(terrain.heightfield.size_x_m, 6.0);
   EXPECT_DOUBLE_EQ(terrain.heightfield.size_y_m, 4.0);
   EXPECT_DOUBLE_EQ(terrain.heightfield.max_height_m, 0.3);
+  EXPECT_TRUE(terrain.ground.soil.has_value());  // soft sand on a heightfield
 }
 
 TEST(TerrainFromToml, ErrorsNameTheKey) {
@@ -163,7 +153,12 @@ TEST(TerrainFromToml, ErrorsNameTheKey) {
                "number");
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material", "unknown");
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"ice\"\n", "terrain.material",
-               "\"rigid-sand\"");
+               "\"lunar-soil\"");
+  // The rigid contact sand had before the soil model is gone, and so is its skid sinkage.
+  expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"rigid-sand\"\n", "terrain.material",
+               "\"rigid-sand\", the rigid contact sand had before the soil model, is gone");
+  expect_error("[terrain]\nkind = \"flat\"\nmaterial = { friction = 0.5, skid_sinkage = 1.5 }\n",
+               "skid_sinkage", "not a known key");
   // The soil model's sand was called "soft-sand" until it became the sand.
   expect_error("[terrain]\nkind = \"flat\"\nmaterial = \"soft-sand\"\n", "terrain.material",
                "\"soft-sand\" is now called \"sand\"");
