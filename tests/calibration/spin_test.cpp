@@ -274,6 +274,9 @@ TEST(SpinCalibration, ReportsEachFHatAndTheirLineBesideTheThesisEvenWhenRefused)
   EXPECT_TRUE(mentions(with_short.notes, "the line through F̂: 5.30 c + 0.04 (rms 0.000)"))
       << first(with_short.notes);
   EXPECT_FALSE(mentions(with_short.notes, "c = 0.550 m")) << first(with_short.notes);
+  EXPECT_TRUE(mentions(with_short.problems, "c = 0.550 m: only 50 cycles"))
+      << first(with_short.problems);
+  EXPECT_FALSE(mentions(with_short.problems, "c = 0.550 m: F̂")) << first(with_short.problems);
   sweeps.pop_back();
   const ProcedureResult accepted = fit_spin(sweeps);
   ASSERT_TRUE(accepted.accepted()) << first(accepted.problems);

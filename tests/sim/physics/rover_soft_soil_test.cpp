@@ -466,46 +466,62 @@ TEST(RoverSoftSoil, TwoRunsAreBitIdentical) {
 }
 
 // Soft sand on a heightfield (since 2026-11-29): the soil starts at the image's heights and the
-// rover sinks into it as on flat sand. The image is a ramp along x, 9 × 5 pixels over 8 m × 6 m,
-// from black at x = −4 m to white (0.3 m) at 4 m: bilinear between its pixels that is the plane
-// z = 0.3·(x + 4)/8 (2.1°), which every cell of the soil's grid starts on. Set down and standing
-// 2 s, the centre wheels' rims are 1–3 cm into it, as on flat sand (StandsOnSoftSandAndSinksIn,
-// the ground's level under each wheel added); driven 2 s at 2 rad/s, they leave ruts, and the
-// soil's field, spanning the ramp's 0.3 m and the soil's range above and below it, holds the
-// grid: a vertical ray meets each cell's surface at its centre (to float's resolution over the
-// field's 0.7 m, 1e-7 m). Outside the image (the grid reaches x = 9 m) the soil starts on the plane
-// around it, 1 cm below black.
-TerrainSpec soft_ramp_heightfield() {
+// rover sinks into it as on flat sand. The image, 9 × 5 pixels over 8 m × 6 m, rises 1 grey level
+// in 20 a column (+x, 1 m) and 3 a row (the image's rows run from +y at its top, 1.5 m apart), to
+// white (0.3 m) at (4, 3) m: bilinear between its pixels that is the plane
+// z = 0.015·(x + 2y + 10), which every cell of the soil's grid starts on, and which MuJoCo's own
+// heightfield of the same image on hard ground meets at every pixel (copy_heightfield: a row or
+// column laid the wrong way round would tilt it the other way). Set down and standing 2 s, the
+// centre wheels' rims are 1–3 cm into it, as on flat sand (StandsOnSoftSandAndSinksIn, the
+// ground's level under each wheel added); driven 2 s at 2 rad/s, they leave ruts, and the soil's
+// field, spanning the image's 0.3 m and the soil's range above and below it, holds the grid: a
+// vertical ray meets each cell's surface at its centre (to float's resolution over the field's
+// 0.7 m, 1e-7 m). Outside the image (the grid reaches x = 9 m) the soil starts on the plane around
+// it, 1 cm below black.
+TerrainSpec tilted_heightfield(const Material& ground) {
   TerrainSpec terrain;
   terrain.kind = TerrainKind::kHeightfield;
-  terrain.ground = sand();
+  terrain.ground = ground;
   terrain.heightfield.size_x_m = 8.0;
   terrain.heightfield.size_y_m = 6.0;
   terrain.heightfield.max_height_m = 0.3;
   GrayImage& image = terrain.heightfield.image;
   image.width = 9;
   image.height = 5;
-  for (std::size_t row = 0; row < image.height; ++row) {
+  for (std::size_t row = 0; row < image.height; ++row) {  // the top row first, at +y
     for (std::size_t column = 0; column < image.width; ++column) {
-      image.values.push_back(static_cast<double>(column) / 8.0);
+      image.values.push_back(static_cast<double>(column + 3 * (image.height - 1 - row)) / 20.0);
     }
   }
   return terrain;
 }
 
 TEST(RoverSoftSoil, OnAHeightfieldTheSoilStartsAtTheImageAndTheRoverSinksIn) {
-  const TerrainSpec terrain = soft_ramp_heightfield();
-  const auto ramp_m = [](double x_m) { return 0.3 * (x_m + 4.0) / 8.0; };
+  const TerrainSpec terrain = tilted_heightfield(sand());
+  const auto plane_m = [](double x_m, double y_m) { return 0.015 * (x_m + 2.0 * y_m + 10.0); };
   EXPECT_DOUBLE_EQ(ground_level_m(terrain, 4.5, 0.0), -0.01);  // beyond the image
   EXPECT_DOUBLE_EQ(ground_level_m(terrain, 0.0, 3.5), -0.01);
+  {
+    const RoverPhysics hard(Params{}, tilted_heightfield(hard_ground()));
+    for (int column = 1; column < 8; ++column) {
+      for (int row = 1; row < 4; ++row) {
+        const double x = -4.0 + column, y = -3.0 + 1.5 * row;
+        EXPECT_NEAR(ground_level_m(terrain, x, y), plane_m(x, y), 1e-12) << x << ", " << y;
+        EXPECT_NEAR(hard.terrain_height_m(x, y), plane_m(x, y), 1e-6) << x << ", " << y;
+      }
+    }
+  }
   RoverPhysics physics(Params{}, terrain);
   const soil::SoilGrid& grid = physics.soft_soil()->grid();
   const soil::GridSpec& spec = grid.spec();
+  const auto centre = [&](int ix, int iy) {
+    return std::pair{spec.origin_x_m + (ix + 0.5) * spec.cell_m,
+                     spec.origin_y_m + (iy + 0.5) * spec.cell_m};
+  };
   for (int iy = 0; iy < spec.cells_y; iy += 37) {
     for (int ix = 0; ix < spec.cells_x; ix += 23) {
-      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
-      const double y = spec.origin_y_m + (iy + 0.5) * spec.cell_m;
-      const double level = std::abs(x) < 4.0 && std::abs(y) < 3.0 ? ramp_m(x) : -0.01;
+      const auto [x, y] = centre(ix, iy);
+      const double level = std::abs(x) < 4.0 && std::abs(y) < 3.0 ? plane_m(x, y) : -0.01;
       ASSERT_NEAR(grid.cell_surface_m(ix, iy), level, 1e-12) << x << ", " << y;
       ASSERT_NEAR(physics.terrain_height_m(x, y), level, 1e-7) << x << ", " << y;
     }
@@ -514,8 +530,8 @@ TEST(RoverSoftSoil, OnAHeightfieldTheSoilStartsAtTheImageAndTheRoverSinksIn) {
   expect_healthy(physics);
   const GroundTruth standing = physics.truth();
   for (std::size_t wheel : {kCenterLeft, kCenterRight}) {
-    const double rim_depth =
-        ramp_m(standing.wheel_position_m[wheel][0]) + 0.115 - standing.wheel_position_m[wheel][2];
+    const auto& at = standing.wheel_position_m[wheel];
+    const double rim_depth = plane_m(at[0], at[1]) + 0.115 - at[2];
     EXPECT_GT(rim_depth, 0.01) << kMotorNames[wheel];
     EXPECT_LT(rim_depth, 0.03) << kMotorNames[wheel];
   }
@@ -528,11 +544,11 @@ TEST(RoverSoftSoil, OnAHeightfieldTheSoilStartsAtTheImageAndTheRoverSinksIn) {
   EXPECT_GT(physics.truth().position_m[0] - standing.position_m[0], 0.1);
   // y −1…1 m, x −1…2 m, against the ground's plane z = 0 (the field's on a heightfield).
   expect_field_holds_grid(physics, 0.0, 100, 250, 100, 200);
-  double deepest_rut = 0.0;  // below the ramp
+  double deepest_rut = 0.0;  // below the image's plane
   for (int iy = 100; iy < 200; ++iy) {
     for (int ix = 100; ix < 250; ++ix) {
-      const double x = spec.origin_x_m + (ix + 0.5) * spec.cell_m;
-      deepest_rut = std::max(deepest_rut, ramp_m(x) - grid.cell_surface_m(ix, iy));
+      const auto [x, y] = centre(ix, iy);
+      deepest_rut = std::max(deepest_rut, plane_m(x, y) - grid.cell_surface_m(ix, iy));
     }
   }
   EXPECT_GT(deepest_rut, 0.01);
