@@ -60,15 +60,9 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
   }
   const double slope_rad = ground_slope_rad(terrain);
   const double slope = std::tan(slope_rad);
-  if (terrain.kind == TerrainKind::kHeightfield) {
-    soft_soil.emplace(
-        *terrain.ground.soil, kSoftSoilGrid,
-        [terrain](double x_m, double y_m) { return ground_level_m(terrain, x_m, y_m); }, wheels);
-  } else {
-    soft_soil.emplace(
-        *terrain.ground.soil, kSoftSoilGrid, [slope](double x_m, double) { return x_m * slope; },
-        wheels);
-  }
+  soft_soil.emplace(
+      *terrain.ground.soil, kSoftSoilGrid,
+      [terrain](double x_m, double y_m) { return ground_level_m(terrain, x_m, y_m); }, wheels);
   soil_field = require_id(*model, mjOBJ_HFIELD, kSoilFieldName);
   soil_field_geom = require_id(*model, mjOBJ_GEOM, kSoilFieldName);
   soil_field_cos = std::cos(slope_rad);
@@ -81,13 +75,9 @@ void RoverPhysics::Impl::build_soft_soil(const TerrainSpec& terrain) {
       soil_field_geoms.push_back(geom);
     }
   }
-  // The model was built with the field at the ground's plane (mujoco_model.cpp): the soil's initial
-  // level on a plane; a heightfield's relief goes in now.
-  if (terrain.kind == TerrainKind::kHeightfield) {
-    copy_soil_to_field();
-  } else {
-    soft_soil->grid().clear_changed();
-  }
+  // The model was built with the field at the ground's plane (mujoco_model.cpp); the soil's
+  // initial level goes in now (no rise on a plane, a heightfield's relief).
+  copy_soil_to_field();
 }
 
 // The ground's plane under each column of the window's cells.
