@@ -97,8 +97,8 @@ TEST(ShippedScenarios, IncludeTheRequiredSet) {
         "waypoint-loop-sand", "odometry-rolking",
         // The joint-blocked failsafe (a jammed joint on soft sand).
         "joint-blocked",
-        // Issue #14: Field Experiment 5.2, m3 on soft sand.
-        "sideways-drift-soft-sand"}) {
+        // Issue #14: Field Experiment 5.2, m3 on soft sand; a dune of soft sand (a heightfield).
+        "sideways-drift-soft-sand", "sand-dune-crossing"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
   }
 }
