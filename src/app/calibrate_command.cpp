@@ -59,10 +59,7 @@ std::optional<std::string> argument_problem(const CalibrateArgs& args,
     if (args.ground && !args.sim) return "--ground is for the simulated rover (--sim) only";
     if (args.ground && !sim::material_named(*args.ground)) {
       return "--ground " + *args.ground + " is unknown; use hard, sand, grass or lunar-soil" +
-             (*args.ground == "rigid-sand"
-                  ? " (rigid-sand, the rigid contact sand had before the soil model, is gone since "
-                    "2026-11-29: sand is the soil model)"
-                  : "");
+             sim::retired_material_note(*args.ground);
     }
   } else if (args.from.empty()) {
     return "--from DIR is required (a scenario's --out folder with telemetry.csv)";

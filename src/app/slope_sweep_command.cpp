@@ -50,7 +50,8 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
   const std::optional<sim::Material> ground = sim::material_named(args.ground);
   if (!ground || !ground->soil) {
     err << "marsokhod slope-sweep: --ground " << args.ground
-        << " is not a soft soil; use sand or lunar-soil\n";
+        << " is not a soft soil; use sand or lunar-soil" << sim::retired_material_note(args.ground)
+        << "\n";
     return kUsageError;
   }
   if (2.0 * args.window_s > args.time_s) {

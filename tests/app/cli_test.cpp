@@ -229,6 +229,18 @@ TEST_F(CliCalibrate, BadArgumentsAreOneLineUsageErrors) {
   EXPECT_NE(r.err.find("--ground mud is unknown; use hard, sand, grass or lunar-soil"),
             std::string::npos)
       << r.err;
+  // A retired name says what became of it, as a terrain file's material does.
+  r = cli({"--config", kConfig.c_str(), "calibrate", "spin", "--sim", "--ground", "rigid-sand"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("\"rigid-sand\", the rigid contact sand had before the soil model, is gone"),
+            std::string::npos)
+      << r.err;
+  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--ground", "soft-sand"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("is not a soft soil; use sand or lunar-soil (\"soft-sand\" is now called "
+                       "\"sand\")"),
+            std::string::npos)
+      << r.err;
   r = cli({"--config", kConfig.c_str(), "calibrate", "spin", "--can", "socketcan:can0",
            "--ground", "sand"});
   EXPECT_EQ(r.status, 2);

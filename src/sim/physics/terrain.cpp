@@ -126,11 +126,7 @@ Material material_from(const toml::node* node, TableReader& owner, const Materia
                "= \"" + *name +
                    "\" is unknown; use \"hard\", \"sand\", \"grass\", \"lunar-soil\" or a "
                    "table { friction = …, rolling_friction_m = … }" +
-                   (*name == "soft-sand" ? " (\"soft-sand\" is now called \"sand\")" : "") +
-                   (*name == "rigid-sand"
-                        ? " (\"rigid-sand\", the rigid contact sand had before the soil model, "
-                          "is gone since 2026-11-29: \"sand\" is the soil model)"
-                        : ""),
+                   retired_material_note(*name),
                node);
   }
   const toml::table* table = node->as_table();
@@ -259,6 +255,15 @@ Material sand() {
   Material material{0.5, 0.0, 0.0};
   material.soil = soil::dry_sand();
   return material;
+}
+
+std::string retired_material_note(std::string_view name) {
+  if (name == "soft-sand") return " (\"soft-sand\" is now called \"sand\")";
+  if (name == "rigid-sand") {
+    return " (\"rigid-sand\", the rigid contact sand had before the soil model, is gone since "
+           "2026-11-29: \"sand\" is the soil model)";
+  }
+  return "";
 }
 
 std::optional<Material> material_named(std::string_view name) {

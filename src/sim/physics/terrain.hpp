@@ -61,6 +61,9 @@ Material soft_lunar_soil();
 // The material of a terrain file's name: "hard", "sand", "grass" or "lunar-soil";
 // nullopt for another name.
 std::optional<Material> material_named(std::string_view name);
+// For a name material_named refuses: what became of it, as " (…)" to append to the refusal —
+// "soft-sand" is now "sand", "rigid-sand" is gone — or "" for any other name.
+std::string retired_material_note(std::string_view name);
 
 enum class TerrainKind { kFlat, kSlope, kObstacles, kHeightfield };
 
