@@ -11,6 +11,7 @@
 #include <map>
 #include <mutex>
 #include <thread>
+#include <utility>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -121,6 +122,18 @@ TEST(Cli, SlopeSweepRefusesRigidGroundAndBadNumbers) {
   EXPECT_NE(r.err.find("--ground hard is not a soft soil; use sand or lunar-soil"),
             std::string::npos)
       << r.err;
+  // A retired name says what became of it, as a terrain file's material does.
+  for (const auto& [name, note] :
+       {std::pair{"soft-sand", "(\"soft-sand\" is now called \"sand\")"},
+        {"rigid-sand",
+         "(\"rigid-sand\", the rigid contact sand had before the soil model, is gone"}}) {
+    r = cli({"--config", kConfig.c_str(), "slope-sweep", "--ground", name});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find(std::string("--ground ") + name +
+                         " is not a soft soil; use sand or lunar-soil " + note),
+              std::string::npos)
+        << r.err;
+  }
   r = cli({"--config", kConfig.c_str(), "slope-sweep", "--drive", "3.0"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("exceeds max_drive_speed_radps 2.25"), std::string::npos) << r.err;
@@ -235,12 +248,9 @@ TEST_F(CliCalibrate, BadArgumentsAreOneLineUsageErrors) {
   EXPECT_NE(r.err.find("\"rigid-sand\", the rigid contact sand had before the soil model, is gone"),
             std::string::npos)
       << r.err;
-  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--ground", "soft-sand"});
+  r = cli({"--config", kConfig.c_str(), "calibrate", "spin", "--sim", "--ground", "soft-sand"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("is not a soft soil; use sand or lunar-soil (\"soft-sand\" is now called "
-                       "\"sand\")"),
-            std::string::npos)
-      << r.err;
+  EXPECT_NE(r.err.find("(\"soft-sand\" is now called \"sand\")"), std::string::npos) << r.err;
   r = cli({"--config", kConfig.c_str(), "calibrate", "spin", "--can", "socketcan:can0",
            "--ground", "sand"});
   EXPECT_EQ(r.status, 2);
