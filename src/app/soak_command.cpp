@@ -59,14 +59,24 @@ void print_summary(const runner::SoakResult& r, std::ostream& out) {
                 static_cast<unsigned long long>(r.spurious_silent_faults));
   out << line;
   std::snprintf(line, sizeof line,
-                "invariants checked: %llu over %llu cycles; joints at most %.4f rad outside (5.3)\n"
+                "invariants checked: %llu over %llu cycles; joints at most %.4f rad outside "
+                "(5.3)\n",
+                static_cast<unsigned long long>(r.evaluations),
+                static_cast<unsigned long long>(r.cycles), r.max_joint_excess_rad);
+  out << line;
+  if (const auto& at = r.max_joint_excess_at) {
+    std::snprintf(line, sizeof line,
+                  "  the most at t = %.4f s (segment %zu on %s, session t = %.4f s): ",
+                  at->soak_time_s, at->segment, at->sand ? "sand" : "hard ground",
+                  static_cast<double>(at->violation.time_us) * 1e-6);
+    out << line << at->violation.detail << "\n";
+  }
+  std::snprintf(line, sizeof line,
                 "joints the driver could not know (lost pulses): the truth at most %.4f rad "
                 "outside (5.3)\n"
                 "joints while the driver was down (their run-on after a brown-out): at most %.4f "
                 "rad outside (5.3)\n"
                 "violations: %llu\n",
-                static_cast<unsigned long long>(r.evaluations),
-                static_cast<unsigned long long>(r.cycles), r.max_joint_excess_rad,
                 r.max_unknown_joint_excess_rad, r.max_down_joint_excess_rad,
                 static_cast<unsigned long long>(r.total_violations()));
   out << line;

@@ -29,11 +29,17 @@ struct Tally {
   }
 };
 
-void add_segment_stats(const SegmentRunner& run, Session& session, SoakResult& r) {
+void add_segment_stats(const SegmentPlan& plan, const SegmentRunner& run, Session& session,
+                       SoakResult& r) {
   r.cycles += session.cycles();
   r.evaluations += run.checker().evaluations();
   r.driver_restarts += session.driver_restarts();
   r.spurious_silent_faults += run.spurious_silent_faults();
+  if (const auto& at = run.checker().max_joint_excess_at();
+      at && run.checker().max_joint_excess_rad() > r.max_joint_excess_rad) {
+    r.max_joint_excess_at = SoakViolation{*at, plan.index, plan.sand,
+                                          static_cast<double>(plan.start_us + at->time_us) * 1e-6};
+  }
   r.max_joint_excess_rad = std::max(r.max_joint_excess_rad, run.checker().max_joint_excess_rad());
   r.max_unknown_joint_excess_rad =
       std::max(r.max_unknown_joint_excess_rad, run.checker().max_unknown_joint_excess_rad());
@@ -51,6 +57,18 @@ void add_segment_stats(const SegmentRunner& run, Session& session, SoakResult& r
   t.long_silences += s.long_silences;
   t.hand_overs += s.hand_overs;
   t.fault_clears += s.fault_clears;
+}
+
+// A violation (or the worst joint excess) in the summary: where in the soak, and what.
+nlohmann::ordered_json violation_json(const SoakViolation& v, bool with_invariant) {
+  nlohmann::ordered_json j;
+  if (with_invariant) j["invariant"] = invariant_name(v.violation.invariant);
+  j["soak_time_s"] = v.soak_time_s;
+  j["segment"] = v.segment;
+  j["terrain"] = v.sand ? "sand" : "hard";
+  j["session_time_s"] = static_cast<double>(v.violation.time_us) * 1e-6;
+  j["detail"] = v.violation.detail;
+  return j;
 }
 
 nlohmann::ordered_json window_json(const SoakOptions& options, const SegmentPlan& plan,
@@ -119,7 +137,7 @@ SoakResult run_soak(const Params& params, const SoakOptions& options,
     while (!run.done()) {
       for (const Violation& v : run.step()) tally.add(plan, v);
     }
-    add_segment_stats(run, run.session(), result);
+    add_segment_stats(plan, run, run.session(), result);
     simulated_us += run.time_us();
   }
   result.segments = plans.size();
@@ -149,6 +167,9 @@ nlohmann::ordered_json to_json(const SoakResult& r) {
   j["max_joint_excess_rad"] = r.max_joint_excess_rad;
   j["max_unknown_joint_excess_rad"] = r.max_unknown_joint_excess_rad;
   j["max_down_joint_excess_rad"] = r.max_down_joint_excess_rad;
+  if (r.max_joint_excess_at) {
+    j["max_joint_excess_at"] = violation_json(*r.max_joint_excess_at, false);
+  }
   for (std::size_t k = 0; k < kFaultKindCount; ++k) {
     const char* name = fault_kind_name(static_cast<FaultKind>(k));
     j["faults_injected"][name] = r.faults_injected[k];
@@ -166,12 +187,7 @@ nlohmann::ordered_json to_json(const SoakResult& r) {
   }
   j["first_violations"] = nlohmann::ordered_json::array();
   for (const SoakViolation& v : r.first_violations) {
-    j["first_violations"].push_back({{"invariant", invariant_name(v.violation.invariant)},
-                                     {"soak_time_s", v.soak_time_s},
-                                     {"segment", v.segment},
-                                     {"terrain", v.sand ? "sand" : "hard"},
-                                     {"session_time_s", static_cast<double>(v.violation.time_us) * 1e-6},
-                                     {"detail", v.violation.detail}});
+    j["first_violations"].push_back(violation_json(v, true));
   }
   j["recording"] = r.recording ? nlohmann::ordered_json(r.recording->string()) : nullptr;
   if (!r.recording_note.empty()) j["recording_note"] = r.recording_note;

@@ -67,6 +67,7 @@ struct SoakResult {
   std::uint64_t driver_restarts = 0;
   std::uint64_t spurious_silent_faults = 0;
   double max_joint_excess_rad = 0.0;  // the farthest a joint went outside (5.3), as judged
+  std::optional<SoakViolation> max_joint_excess_at;  // where (when above 0): its cycle and detail
   double max_unknown_joint_excess_rad = 0.0;  // the truth of joints the driver could not know
   double max_down_joint_excess_rad = 0.0;  // the joints outside (5.3) while the driver was down
   std::array<std::uint64_t, kInvariantCount> violations{};  // per invariant

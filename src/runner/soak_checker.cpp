@@ -242,12 +242,12 @@ void InvariantChecker::check_joints(const CycleView& c, Report& out) {
     if (unknown && starting) continue;
     const double p = unknown ? c.status->motors[motors[k]].position_rad : truth;
     const double excess = excess_over(bounds[k], p);
-    max_joint_excess_rad_ = std::max(max_joint_excess_rad_, excess);
-    if (excess > limits_.joint_tolerance_rad) {
-      add(out, Invariant::kJointBounds, c,
-          joint_bounds_detail(k, p, excess, bounds[k]) +
-              (unknown ? " (the driver's estimate: its encoder lost pulses)" : ""));
-    }
+    const bool worst = excess > max_joint_excess_rad_;
+    if (!worst && !(excess > limits_.joint_tolerance_rad)) continue;
+    const std::string detail = joint_bounds_detail(k, p, excess, bounds[k]) +
+                               (unknown ? " (the driver's estimate: its encoder lost pulses)" : "");
+    if (worst) note_joint_excess(c, excess, detail);
+    if (excess > limits_.joint_tolerance_rad) add(out, Invariant::kJointBounds, c, detail);
   }
 }
 
@@ -264,12 +264,18 @@ void InvariantChecker::check_joints_down(const CycleView& c, Report& out) {
       continue;
     }
     max_down_joint_excess_rad_ = std::max(max_down_joint_excess_rad_, excess);
-    max_joint_excess_rad_ = std::max(max_joint_excess_rad_, excess);
-    if (excess > limits_.joint_tolerance_rad) {
-      add(out, Invariant::kJointBounds, c,
-          joint_bounds_detail(k, truth, excess, bounds[k]) + " while the driver is down");
-    }
+    const bool worst = excess > max_joint_excess_rad_;
+    if (!worst && !(excess > limits_.joint_tolerance_rad)) continue;
+    const std::string detail =
+        joint_bounds_detail(k, truth, excess, bounds[k]) + " while the driver is down";
+    if (worst) note_joint_excess(c, excess, detail);
+    if (excess > limits_.joint_tolerance_rad) add(out, Invariant::kJointBounds, c, detail);
   }
+}
+
+void InvariantChecker::note_joint_excess(const CycleView& c, double excess, std::string detail) {
+  max_joint_excess_rad_ = excess;
+  max_joint_excess_at_ = Violation{Invariant::kJointBounds, c.time_us, std::move(detail)};
 }
 
 void InvariantChecker::check_responses(const CycleView& c, Report& out) {

@@ -112,6 +112,9 @@ class InvariantChecker {
   std::uint64_t evaluations() const { return evaluations_; }
   // The largest distance of a joint outside (5.3) seen so far (0 inside), as joint-bounds judges.
   double max_joint_excess_rad() const { return max_joint_excess_rad_; }
+  // Where that largest excess was, once it is above 0: the cycle's t_k and joint_bounds' detail
+  // ("rear joint 2.5561 rad is 0.0061 rad outside (5.3) [...]", and whether the driver was down).
+  const std::optional<Violation>& max_joint_excess_at() const { return max_joint_excess_at_; }
   // The truth's farthest excess over (5.3) of a joint the driver could not know (see above).
   double max_unknown_joint_excess_rad() const { return max_unknown_joint_excess_rad_; }
   // The largest excess over (5.3) of a (known) joint while the driver was down.
@@ -137,6 +140,8 @@ class InvariantChecker {
   void check_joints_down(const CycleView& c, Report& out);
   void check_restart(const CycleView& c, Report& out);
   void check_supply(const CycleView& c, std::optional<double> reported_v, Report& out);
+  // max_joint_excess_rad_ and where, when excess passes it.
+  void note_joint_excess(const CycleView& c, double excess, std::string detail);
 
   const Params* params_;
   CheckerLimits limits_;
@@ -145,6 +150,7 @@ class InvariantChecker {
   std::int64_t stop_allowance_us_;  // timeout + the controlled stop's time (operator-stop)
   std::uint64_t evaluations_ = 0;
   double max_joint_excess_rad_ = 0.0;
+  std::optional<Violation> max_joint_excess_at_;  // invariant kJointBounds, the excess' cycle
   double max_unknown_joint_excess_rad_ = 0.0;
   double max_down_joint_excess_rad_ = 0.0;
   bool previous_running_ = false;

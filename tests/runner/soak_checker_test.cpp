@@ -161,6 +161,33 @@ TEST_F(CheckerTest, AJointOutsideTheBoundsIsCaughtOnTheTruthOrTheEstimate) {
   EXPECT_TRUE(has(cycle({}), Invariant::kJointBounds));
 }
 
+TEST_F(CheckerTest, TheLargestJointExcessIsKeptWithItsCycle) {
+  settle();
+  EXPECT_FALSE(checker_.max_joint_excess_at().has_value());  // inside (5.3): nothing to show
+  view_.joint_angle_rad = {-1.5, 2.55 + 0.004};
+  const std::int64_t first_us = time_us_;
+  EXPECT_TRUE(cycle({}).empty());
+  view_.joint_angle_rad = {-1.5, 2.55 + 0.002};  // less: the first stays the largest
+  EXPECT_TRUE(cycle({}).empty());
+  ASSERT_TRUE(checker_.max_joint_excess_at().has_value());
+  EXPECT_EQ(checker_.max_joint_excess_at()->time_us, first_us);
+  EXPECT_EQ(checker_.max_joint_excess_at()->invariant, Invariant::kJointBounds);
+  EXPECT_NE(checker_.max_joint_excess_at()->detail.find("rear joint 2.5540 rad is 0.0040 rad"),
+            std::string::npos)
+      << checker_.max_joint_excess_at()->detail;
+  // A larger one while the driver is down takes its place, and says so.
+  view_.joint_angle_rad = {-2.55 - 0.007, 1.5};
+  const std::int64_t down_us = time_us_;
+  EXPECT_TRUE(down_cycle().empty());
+  EXPECT_NEAR(checker_.max_joint_excess_rad(), 0.007, 1e-12);
+  EXPECT_EQ(checker_.max_joint_excess_at()->time_us, down_us);
+  EXPECT_NE(checker_.max_joint_excess_at()->detail.find("front joint -2.5570 rad is 0.0070 rad"),
+            std::string::npos)
+      << checker_.max_joint_excess_at()->detail;
+  EXPECT_NE(checker_.max_joint_excess_at()->detail.find("while the driver is down"),
+            std::string::npos);
+}
+
 TEST_F(CheckerTest, ASilentControllerMustBeCountedAndReportedByTheThirdCycle) {
   settle();
   status_.bus.missed = 1;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -128,6 +129,15 @@ TEST(Soak, AShortSoakIsCleanAndDeterministic) {
   EXPECT_GT(a.evaluations, a.cycles * 6);
   EXPECT_GT(a.operator_stats.commands, 3000u);
   EXPECT_EQ(a.total_violations(), 0u) << a.first_violations.front().violation.detail;
+  // The summary says where the joints came nearest (5.3)'s tolerance, in the soak's own time.
+  ASSERT_GT(a.max_joint_excess_rad, 0.0);
+  ASSERT_TRUE(a.max_joint_excess_at.has_value());
+  char excess[48];
+  std::snprintf(excess, sizeof excess, "is %.4f rad outside (5.3)", a.max_joint_excess_rad);
+  EXPECT_NE(a.max_joint_excess_at->violation.detail.find(excess), std::string::npos)
+      << a.max_joint_excess_at->violation.detail;
+  EXPECT_LE(a.max_joint_excess_at->soak_time_s, 72.0);
+  EXPECT_EQ(to_json(a)["max_joint_excess_at"]["detail"], a.max_joint_excess_at->violation.detail);
   const SoakResult b = run_soak(shipped_params(), options);
   auto same = [](nlohmann::ordered_json j) {
     j.erase("wall_time_s");
