@@ -66,7 +66,7 @@ void print_summary(const runner::SoakResult& r, std::ostream& out) {
   out << line;
   if (const auto& at = r.max_joint_excess_at) {
     std::snprintf(line, sizeof line,
-                  "  the most at t = %.4f s (segment %zu on %s, session t = %.4f s): ",
+                  "  the largest excess at t = %.4f s (segment %zu on %s, session t = %.4f s): ",
                   at->soak_time_s, at->segment, at->sand ? "sand" : "hard ground",
                   static_cast<double>(at->violation.time_us) * 1e-6);
     out << line << at->violation.detail << "\n";

@@ -188,6 +188,20 @@ TEST_F(CheckerTest, TheLargestJointExcessIsKeptWithItsCycle) {
             std::string::npos);
 }
 
+TEST_F(CheckerTest, AnExcessPastTheToleranceIsReportedEvenWhenItIsNotTheLargest) {
+  settle();
+  view_.joint_angle_rad = {-1.5, 2.55 + 0.02};
+  EXPECT_TRUE(has(cycle({}), Invariant::kJointBounds));
+  view_.joint_angle_rad = {-1.5, 2.55 + 0.015};  // past 0.01, below the 0.02 before
+  EXPECT_TRUE(has(cycle({}), Invariant::kJointBounds));
+  EXPECT_NEAR(checker_.max_joint_excess_rad(), 0.02, 1e-12);
+  view_.joint_angle_rad = {-2.55 - 0.012, 1.5};  // the same while the driver is down
+  EXPECT_TRUE(has(down_cycle(), Invariant::kJointBounds));
+  EXPECT_NEAR(checker_.max_joint_excess_rad(), 0.02, 1e-12);
+  EXPECT_NEAR(checker_.max_down_joint_excess_rad(), 0.012, 1e-12);
+  EXPECT_NE(checker_.max_joint_excess_at()->detail.find("rear joint 2.5700"), std::string::npos);
+}
+
 TEST_F(CheckerTest, ASilentControllerMustBeCountedAndReportedByTheThirdCycle) {
   settle();
   status_.bus.missed = 1;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "runner/replay.hpp"
 #include "runner/soak_segment.hpp"
@@ -136,6 +137,11 @@ TEST(Soak, AShortSoakIsCleanAndDeterministic) {
   std::snprintf(excess, sizeof excess, "is %.4f rad outside (5.3)", a.max_joint_excess_rad);
   EXPECT_NE(a.max_joint_excess_at->violation.detail.find(excess), std::string::npos)
       << a.max_joint_excess_at->violation.detail;
+  // The soak's time is the segment's start (2308 cycles of 15.6 ms for the second) plus the
+  // session's time.
+  const double session_s = static_cast<double>(a.max_joint_excess_at->violation.time_us) * 1e-6;
+  EXPECT_NEAR(a.max_joint_excess_at->soak_time_s,
+              (a.max_joint_excess_at->segment == 0 ? 0.0 : 2308 * 0.0156) + session_s, 1e-9);
   EXPECT_LE(a.max_joint_excess_at->soak_time_s, 72.0);
   EXPECT_EQ(to_json(a)["max_joint_excess_at"]["detail"], a.max_joint_excess_at->violation.detail);
   const SoakResult b = run_soak(shipped_params(), options);
@@ -167,6 +173,15 @@ TEST(Soak, AViolationWritesAWindowThatReplaysFromTheSoaksDriver) {
   const SoakViolation& first = r.first_violations.front();
   EXPECT_EQ(first.violation.invariant, Invariant::kDutyBound);
   EXPECT_NE(first.violation.detail.find("ceiling 0.1000"), std::string::npos) << first.violation.detail;
+  // The summary's entry for it, its keys in their order.
+  const auto summary = to_json(r).at("first_violations").at(0);
+  std::vector<std::string> keys;
+  for (const auto& item : summary.items()) keys.push_back(item.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"invariant", "soak_time_s", "segment", "terrain",
+                                            "session_time_s", "detail"}));
+  EXPECT_EQ(summary.at("invariant"), "duty-bound");
+  EXPECT_EQ(summary.at("detail"), first.violation.detail);
+  EXPECT_DOUBLE_EQ(summary.at("soak_time_s").get<double>(), first.soak_time_s);
   ASSERT_TRUE(r.recording.has_value());
   EXPECT_EQ(r.recording_note, "");  // the re-run found the same violation at the same cycle
   const auto dir = *r.recording;
