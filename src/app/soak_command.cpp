@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ostream>
+#include <string>
 
 #include "runner/soak.hpp"
 
@@ -22,13 +23,18 @@ std::optional<std::uint64_t> parse_seed(const std::string& text) {
   return std::stoull(text);
 }
 
+// "t = 92.7420 s (segment 1 on sand, session t = 2.7456 s)": where in the soak a cycle was.
+std::string soak_time(const runner::SoakViolation& v) {
+  char text[120];
+  std::snprintf(text, sizeof text, "t = %.4f s (segment %zu on %s, session t = %.4f s)",
+                v.soak_time_s, v.segment, v.sand ? "sand" : "hard ground",
+                static_cast<double>(v.violation.time_us) * 1e-6);
+  return text;
+}
+
 std::string violation_line(std::uint64_t seed, const runner::SoakViolation& v) {
-  char text[200];
-  std::snprintf(text, sizeof text, "violation: seed %llu, t = %.4f s (segment %zu on %s, session t = %.4f s), invariant %s: ",
-                static_cast<unsigned long long>(seed), v.soak_time_s, v.segment,
-                v.sand ? "sand" : "hard ground", static_cast<double>(v.violation.time_us) * 1e-6,
-                runner::invariant_name(v.violation.invariant));
-  return text + v.violation.detail;
+  return "violation: seed " + std::to_string(seed) + ", " + soak_time(v) + ", invariant " +
+         runner::invariant_name(v.violation.invariant) + ": " + v.violation.detail;
 }
 
 void print_summary(const runner::SoakResult& r, std::ostream& out) {
@@ -65,11 +71,7 @@ void print_summary(const runner::SoakResult& r, std::ostream& out) {
                 static_cast<unsigned long long>(r.cycles), r.max_joint_excess_rad);
   out << line;
   if (const auto& at = r.max_joint_excess_at) {
-    std::snprintf(line, sizeof line,
-                  "  the largest excess at t = %.4f s (segment %zu on %s, session t = %.4f s): ",
-                  at->soak_time_s, at->segment, at->sand ? "sand" : "hard ground",
-                  static_cast<double>(at->violation.time_us) * 1e-6);
-    out << line << at->violation.detail << "\n";
+    out << "  the largest excess at " << soak_time(*at) << ": " << at->violation.detail << "\n";
   }
   std::snprintf(line, sizeof line,
                 "joints the driver could not know (lost pulses): the truth at most %.4f rad "

@@ -137,11 +137,12 @@ TEST(Soak, AShortSoakIsCleanAndDeterministic) {
   std::snprintf(excess, sizeof excess, "is %.4f rad outside (5.3)", a.max_joint_excess_rad);
   EXPECT_NE(a.max_joint_excess_at->violation.detail.find(excess), std::string::npos)
       << a.max_joint_excess_at->violation.detail;
-  // The soak's time is the segment's start (2308 cycles of 15.6 ms for the second) plus the
-  // session's time.
+  // The soak's time is the segment's start (the first segment's 2308 cycles before the second)
+  // plus the session's time.
   const double session_s = static_cast<double>(a.max_joint_excess_at->violation.time_us) * 1e-6;
+  const double second_start_s = 2308 * shipped_params().cycle.period_s;
   EXPECT_NEAR(a.max_joint_excess_at->soak_time_s,
-              (a.max_joint_excess_at->segment == 0 ? 0.0 : 2308 * 0.0156) + session_s, 1e-9);
+              (a.max_joint_excess_at->segment == 0 ? 0.0 : second_start_s) + session_s, 1e-9);
   EXPECT_LE(a.max_joint_excess_at->soak_time_s, 72.0);
   EXPECT_EQ(to_json(a)["max_joint_excess_at"]["detail"], a.max_joint_excess_at->violation.detail);
   const SoakResult b = run_soak(shipped_params(), options);
