@@ -120,6 +120,15 @@ void Driver::take_up_joint_gaps() {
   for (std::size_t i = 0; i < kMotorCount; ++i) shaft[i] = m.position_rad[i] + position_offset_rad_[i];
   motion_.reset_joint_positions(shaft);
   status_.joint_origin += ", gaps taken up";
+  // A shaft too near its negative bound to start from rest without running past it
+  // (Startup::min_start_rad) kept its place: p = p̄, at most that far above the joint.
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (!startup_.take_up_skipped(k)) continue;
+    char text[80];
+    std::snprintf(text, sizeof text, " (µ%zu's not: %.4f rad from its bound)",
+                  k == 0 ? kFrontJoint : kRearJoint, startup_.take_up_travel_rad(k));
+    status_.joint_origin += text;
+  }
 }
 
 // The joints' positions are unknown: nothing may move them (no gait, command or behaviour).

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/adaptation/motor_curve.hpp"
+#include "core/adaptation/no_load_velocity.hpp"
 #include "driver/joint_margin.hpp"
 
 namespace marsokhod::driver {
@@ -18,7 +20,17 @@ std::string_view phase_name(StartupPhase phase) {
 }
 
 Startup::Startup(const Params& params)
-    : params_(&params), run_on_s_(joint_dead_time_s(params) + params.cycle.period_s) {}
+    : params_(&params), run_on_s_(joint_dead_time_s(params) + params.cycle.period_s) {
+  const adaptation::MotorCurve curve(
+      adaptation::select_motor_curve(params.motor_curves, params.cycle.icr));
+  const std::array<std::size_t, 2> joints{kFrontJoint, kRearJoint};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double free_speed = adaptation::no_load_velocity(
+        curve, params.operator_input.calibration_duty, params.motors.scale[joints[k]],
+        params.motors.nominal_supply_v, params.motors.nominal_supply_v);
+    min_start_rad_[k] = std::abs(free_speed) * run_on_s_;
+  }
+}
 
 void Startup::advance() {
   if (phase_ == StartupPhase::kConfigure &&
@@ -30,7 +42,12 @@ void Startup::advance() {
 
 void Startup::take_joints(std::array<double, 2> max_travel_rad) {
   joints_taken_ = true;
-  for (std::size_t j = 0; j < 2; ++j) max_travel_rad_[j] = std::max(0.0, max_travel_rad[j]);
+  for (std::size_t j = 0; j < 2; ++j) {
+    // Less than a start from rest travels: not started at all (see the header).
+    take_up_allowed_rad_[j] = max_travel_rad[j];
+    take_up_skipped_[j] = max_travel_rad[j] < min_start_rad_[j];
+    max_travel_rad_[j] = take_up_skipped_[j] ? 0.0 : max_travel_rad[j];
+  }
 }
 
 void Startup::on_configured(std::size_t motor) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/adaptation/motor_curve.hpp"
 #include "core/adaptation/no_load_velocity.hpp"
@@ -318,6 +319,49 @@ TEST(StartupProcedure43, ARestartedShaftDoesNotDragItsJointPastTheNegativeBound)
     EXPECT_EQ(startup.phase(), StartupPhase::kDone);
     EXPECT_GE(shaft[1], std::min(start, params.joints.rear_min_rad) - 2 * 0.14 * h - 1e-9)
         << start;  // the test moves a cycle late
+  }
+}
+
+// A shaft at rest shows no speed to anticipate its run-on by: the duties sent before its readings
+// move (the dead time) move it on regardless. Seed 8's soak: a restarted rear shaft allowed
+// 0.0014 rad ran 0.0054. A plant that acts on a duty after the dead time and reads a cycle late:
+// a take-up allowed less than min_start_rad() does not start; one allowed more stops inside it.
+TEST(StartupProcedure43, ARestartedShaftAllowedLessThanAStartFromRestMovesDoesNotStart) {
+  const Params params;
+  const double h = params.cycle.period_s;
+  const double free_speed = 0.14;  // measured at d = −0.08 (Procedure 4.3): 0.13–0.15 rad/s
+  const Startup probe(params);
+  const double min_start = probe.min_start_rad()[1];
+  // (4.3) at d = 0.08: ζ7·W(0.08) over the dead time and a cycle.
+  EXPECT_NEAR(min_start / (joint_dead_time_s(params) + h), free_speed, 0.02);
+  const auto delay = static_cast<std::size_t>(std::ceil(joint_dead_time_s(params) / h));
+  for (const double allowed : {0.0014, 0.5 * min_start, 0.99 * min_start, 3.0 * min_start}) {
+    Startup startup(params);
+    startup.continue_joints();
+    for (std::size_t i = 0; i < kMotorCount; ++i) startup.on_configured(i);
+    startup.on_dead_man_acknowledged();
+    const double start = params.joints.rear_min_rad + allowed;
+    std::array<double, 2> shaft{params.joints.front_min_rad + 0.5, start};
+    startup.take_joints({0.5, allowed});
+    EXPECT_FALSE(startup.take_up_skipped(0));
+    EXPECT_EQ(startup.take_up_skipped(1), allowed < min_start) << allowed;
+    EXPECT_EQ(startup.take_up_travel_rad(1), allowed);
+    std::vector<double> sent;  // the rear duties, each acting `delay` cycles after it was sent
+    double speed = 0.0;
+    for (int k = 0; k < 400 && startup.phase() == StartupPhase::kCalibrate; ++k) {
+      const auto duty = startup.calibrate(k * h, shaft, {0.0, speed}, {0.0, -free_speed});
+      sent.push_back(duty[1]);
+      const double acting = sent.size() > delay ? sent[sent.size() - 1 - delay] : 0.0;
+      speed = acting == 0.0 ? 0.0 : -free_speed;
+      shaft[1] += speed * h;
+    }
+    EXPECT_EQ(startup.phase(), StartupPhase::kDone) << allowed;
+    if (allowed < min_start) {
+      EXPECT_EQ(shaft[1], start) << allowed << ": not started";
+    } else {
+      EXPECT_LT(shaft[1], start - 0.5 * allowed) << allowed << ": the take-up ran";
+      EXPECT_GE(shaft[1], params.joints.rear_min_rad - 1e-9) << allowed;
+    }
   }
 }
 
