@@ -119,14 +119,22 @@ void Driver::take_up_joint_gaps() {
   MotorVector shaft{};
   for (std::size_t i = 0; i < kMotorCount; ++i) shaft[i] = m.position_rad[i] + position_offset_rad_[i];
   motion_.reset_joint_positions(shaft);
-  status_.joint_origin += ", gaps taken up";
   // A shaft too near its negative bound to start from rest without running past it
-  // (Startup::min_start_rad) kept its place: p = p̄, at most that far above the joint.
+  // (Startup::free_run_on_rad) kept its place: p = p̄, at most that far above a joint inside
+  // (5.3).
+  if (!startup_.take_up_skipped(0) && !startup_.take_up_skipped(1)) {
+    status_.joint_origin += ", gaps taken up";
+    return;
+  }
   for (std::size_t k = 0; k < 2; ++k) {
-    if (!startup_.take_up_skipped(k)) continue;
-    char text[80];
-    std::snprintf(text, sizeof text, " (µ%zu's not: %.4f rad from its bound)",
-                  k == 0 ? kFrontJoint : kRearJoint, startup_.take_up_travel_rad(k));
+    char text[96];
+    const auto motor = static_cast<std::size_t>(k == 0 ? kFrontJoint : kRearJoint);
+    if (startup_.take_up_skipped(k)) {
+      std::snprintf(text, sizeof text, ", µ%zu's gap not taken up (%+.4f rad to its bound)",
+                    motor, startup_.take_up_travel_rad(k));
+    } else {
+      std::snprintf(text, sizeof text, ", µ%zu's gap taken up", motor);
+    }
     status_.joint_origin += text;
   }
 }

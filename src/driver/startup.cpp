@@ -28,7 +28,7 @@ Startup::Startup(const Params& params)
     const double free_speed = adaptation::no_load_velocity(
         curve, params.operator_input.calibration_duty, params.motors.scale[joints[k]],
         params.motors.nominal_supply_v, params.motors.nominal_supply_v);
-    min_start_rad_[k] = std::abs(free_speed) * run_on_s_;
+    free_run_on_rad_[k] = std::abs(free_speed) * run_on_s_;
   }
 }
 
@@ -43,9 +43,9 @@ void Startup::advance() {
 void Startup::take_joints(std::array<double, 2> max_travel_rad) {
   joints_taken_ = true;
   for (std::size_t j = 0; j < 2; ++j) {
-    // Less than a start from rest travels: not started at all (see the header).
+    // Less than the calibration duty's free run-on: not started at all (see the header).
     take_up_allowed_rad_[j] = max_travel_rad[j];
-    take_up_skipped_[j] = max_travel_rad[j] < min_start_rad_[j];
+    take_up_skipped_[j] = !(max_travel_rad[j] >= free_run_on_rad_[j]);  // NaN too
     max_travel_rad_[j] = take_up_skipped_[j] ? 0.0 : max_travel_rad[j];
   }
 }
@@ -83,9 +83,12 @@ std::array<double, 2> Startup::calibrate(double time_s, const std::array<double,
     const double speed = std::abs(shaft_speed_radps[j]);
     // A limit that keeps the joint inside (5.3) (the slope's narrowest gap, a restart's
     // p̄ − p_min) is anticipated by how far the shaft runs on after the decision, perhaps
-    // dragging its joint: |w̄| over the dead time and the duty rule's last step (run_on_s_).
+    // dragging its joint: its speed over the dead time and the duty rule's last step
+    // (run_on_s_). The speed is |w̄|, but at least the calibration duty's free speed: a shaft
+    // that has just started reads slower than the duties already sent will turn it.
     const bool keeps_bound = on_slope || max_travel_rad_[j] < gap_limit;
-    const double run_on = keeps_bound ? speed * run_on_s_ : 0.0;
+    const double run_on =
+        keeps_bound ? std::max(speed * run_on_s_, free_run_on_rad_[j]) : 0.0;
     const bool slowed = speed < kEngagedSpeedShare * std::abs(no_load_speed_radps[j]);
     // Against the crossing's own free speed: the shaft meets its joint within a cycle or two of
     // slowing (ν/2 alone lets a joint that gives way easily, a wheel on soft soil, go on for

@@ -38,12 +38,13 @@
 // shaft never slows and would drag the joint out of (5.3) by the widest gap: there the shaft
 // travels at most p̄ − p_min (take_joints' max_travel_rad), which keeps the joint inside
 // whatever end of the gap the shaft stood at; a shaft stopped short leaves p = p̄ at most that
-// far above the truth, on the safe side of the negative bound. A shaft at rest shows no speed to
-// anticipate its run-on by: the duties sent before its readings move move it on regardless, by
-// about its free speed at the calibration duty over the dead time and a cycle (min_start_rad()).
-// A take-up allowed less than that does not start (seed 8's soak: allowed 0.0014 rad, it ran
-// 0.0054 and took the rear joint 0.0093 rad out of (5.3)); p = p̄ then as for a shaft stopped
-// short.
+// far above the truth, on the safe side of the negative bound (for a joint inside (5.3)). A
+// shaft at rest shows no speed to anticipate its run-on by, and one just started reads slower
+// than the duties already sent will turn it: so the run-on a travel limit anticipates is at
+// least that of the calibration duty's free speed (free_run_on_rad()), and a take-up allowed
+// less than that does not start at all (take_up_skipped()). Seed 8's two-hour soak had a
+// restarted rear shaft allowed 0.0014 rad run 0.0054, taking its joint from 0.0051 to 0.0093 rad
+// out of (5.3). A take-up not started leaves p = p̄, as a shaft stopped short does.
 // Pure: the phase advances on the responses it is shown and on time given as a value.
 #pragma once
 
@@ -85,11 +86,13 @@ class Startup {
   // travelling at most max_travel_rad (front, rear) toward the negative end (see above).
   void take_joints(std::array<double, 2> max_travel_rad = {kNoTravelLimit, kNoTravelLimit});
   static constexpr double kNoTravelLimit = 1e9;
-  // The least a shaft started from rest at the calibration duty travels, front and rear: its
-  // no-load speed there by (4.3) at the nominal supply, over the dead time and a cycle.
-  std::array<double, 2> min_start_rad() const { return min_start_rad_; }
-  // After take_joints: the joint (front, rear) whose take-up was allowed less than that and did
-  // not start.
+  // How far a shaft at the calibration duty's free speed runs on after a decision to stop it,
+  // front and rear: its no-load speed by (4.3) at the nominal supply (a full battery's higher
+  // voltage turns it a few per cent faster), over the dead time and a cycle; about what a shaft
+  // started from rest runs before its readings can stop it.
+  std::array<double, 2> free_run_on_rad() const { return free_run_on_rad_; }
+  // After take_joints: whether the joint's (front, rear) take-up was allowed less than that
+  // and does not start.
   bool take_up_skipped(std::size_t joint) const { return take_up_skipped_.at(joint); }
   // What take_joints allowed the joint (front, rear), skipped or not.
   double take_up_travel_rad(std::size_t joint) const { return take_up_allowed_rad_.at(joint); }
@@ -116,7 +119,7 @@ class Startup {
 
   const Params* params_;
   double run_on_s_;  // a shaft's run-on after a decision to stop it: the dead time + a cycle
-  std::array<double, 2> min_start_rad_{};
+  std::array<double, 2> free_run_on_rad_{};
   std::array<bool, 2> take_up_skipped_{};
   std::array<double, 2> take_up_allowed_rad_{kNoTravelLimit, kNoTravelLimit};
   StartupPhase phase_ = StartupPhase::kConfigure;

@@ -493,6 +493,37 @@ TEST_F(RestartDriverTest, ContinuesFromTheKeptJointsWithoutProcedure43) {
   }
 }
 
+// A rear joint kept 0.003 rad above p7_min: less than a shaft started from rest runs on before
+// its readings can stop it (Startup::free_run_on_rad, 0.0073 rad), so its gap is not taken up —
+// the rear shaft never turns — and the status says so; the front one's is.
+TEST_F(RestartDriverTest, AJointTooNearItsBoundForATakeUpKeepsItsPlace) {
+  JointMemory kept = walk_and_keep();
+  const double allowed = 0.003;
+  ASSERT_LT(allowed, Startup(params).free_run_on_rad()[1]);
+  // Shaft and joint (engaged at the gap's negative end) moved together, as a gait leaves them,
+  // so that with the last cycle's turn since the kept reading the shaft stands `allowed` above.
+  const double since_reading = rover.shaft_rad[kRearJoint] - shaft_at_reading[kRearJoint];
+  kept.joints[1].shaft_rad = params.joints.rear_min_rad + allowed - since_reading;
+  kept.joints[1].joint_rad = kept.joints[1].shaft_rad;
+  inbox.clear();
+  Driver restarted(params, kept);
+  double rear_duty = 0.0;
+  for (int k = 0; k < 400 && restarted.status().mode != DriverMode::kDriving; ++k) {
+    restarted_cycle(restarted);
+    rear_duty = std::max(rear_duty, std::abs(restarted.status().motors[kRearJoint].duty));
+  }
+  const DriverStatus& s = restarted.status();
+  ASSERT_EQ(s.mode, DriverMode::kDriving);
+  EXPECT_TRUE(s.joints_known);
+  EXPECT_EQ(rear_duty, 0.0);
+  EXPECT_NE(s.joint_origin.find(", µ6's gap taken up, µ7's gap not taken up (+0.00"),
+            std::string::npos)
+      << s.joint_origin;
+  // p = p̄: where the kept state and the pulses since put the shaft, inside (5.3).
+  EXPECT_DOUBLE_EQ(s.motors[kRearJoint].position_rad, s.motors[kRearJoint].shaft_position_rad);
+  EXPECT_NEAR(s.motors[kRearJoint].position_rad, params.joints.rear_min_rad + allowed, 0.003);
+}
+
 TEST_F(RestartDriverTest, ARefusedStateHoldsTheJointsUntilCalibrationMode) {
   JointMemory kept = walk_and_keep();
   kept.joints[0].reading.stp = static_cast<std::uint16_t>(kept.joints[0].reading.stp + 777);

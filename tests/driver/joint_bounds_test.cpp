@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/adaptation/motor_curve.hpp"
+#include "core/adaptation/no_load_estimator.hpp"
 #include "core/adaptation/no_load_velocity.hpp"
 #include "driver/duty_rules.hpp"
 #include "driver/joint_margin.hpp"
@@ -323,44 +324,70 @@ TEST(StartupProcedure43, ARestartedShaftDoesNotDragItsJointPastTheNegativeBound)
 }
 
 // A shaft at rest shows no speed to anticipate its run-on by: the duties sent before its readings
-// move (the dead time) move it on regardless. Seed 8's soak: a restarted rear shaft allowed
-// 0.0014 rad ran 0.0054. A plant that acts on a duty after the dead time and reads a cycle late:
-// a take-up allowed less than min_start_rad() does not start; one allowed more stops inside it.
-TEST(StartupProcedure43, ARestartedShaftAllowedLessThanAStartFromRestMovesDoesNotStart) {
+// show motion carry it on regardless. Seed 8's soak: a restarted rear shaft allowed 0.0014 rad
+// ran 0.0054. The plant: each duty turns the shaft at its free speed by (4.3) spread over the
+// next cycles by the δ table of (4.4) (the response the driver's dead time is the mean of), read
+// a cycle late. Whatever it is allowed, no shaft passes its negative bound: a take-up allowed
+// less than free_run_on_rad() does not start, one allowed more runs and stops inside it.
+TEST(StartupProcedure43, ARestartedShaftAllowedLessThanAStartFromRestRunsOnDoesNotStart) {
   const Params params;
   const double h = params.cycle.period_s;
-  const double free_speed = 0.14;  // measured at d = −0.08 (Procedure 4.3): 0.13–0.15 rad/s
+  const adaptation::MotorCurve curve(
+      adaptation::select_motor_curve(params.motor_curves, params.cycle.icr));
+  const std::array<double, 2> free_speed{
+      adaptation::no_load_velocity(curve, params.operator_input.calibration_duty,
+                                   params.motors.scale[kFrontJoint], 24.0, 24.0),
+      adaptation::no_load_velocity(curve, params.operator_input.calibration_duty,
+                                   params.motors.scale[kRearJoint], 24.0, 24.0)};
+  const std::vector<double>& delta =
+      adaptation::select_response(params.responses, h, params.cycle.con).delta;
   const Startup probe(params);
-  const double min_start = probe.min_start_rad()[1];
-  // (4.3) at d = 0.08: ζ7·W(0.08) over the dead time and a cycle.
-  EXPECT_NEAR(min_start / (joint_dead_time_s(params) + h), free_speed, 0.02);
-  const auto delay = static_cast<std::size_t>(std::ceil(joint_dead_time_s(params) / h));
-  for (const double allowed : {0.0014, 0.5 * min_start, 0.99 * min_start, 3.0 * min_start}) {
+  const double run_on_s = joint_dead_time_s(params) + h;
+  for (std::size_t j = 0; j < 2; ++j) {
+    EXPECT_GT(free_speed[j], 0.13) << "Procedure 4.3 measured 0.13–0.15 rad/s at d = −0.08";
+    EXPECT_LT(free_speed[j], 0.16);
+    EXPECT_NEAR(probe.free_run_on_rad()[j], free_speed[j] * run_on_s, 1e-12);
+  }
+  const std::array<double, 2> lowest{params.joints.front_min_rad, params.joints.rear_min_rad};
+  const double min_start = probe.free_run_on_rad()[1];
+  for (const double allowed : {-0.004, 0.0, 0.0014, 0.5 * min_start, 0.99 * min_start,
+                               1.01 * min_start, 1.5 * min_start, 3.0 * min_start}) {
     Startup startup(params);
     startup.continue_joints();
     for (std::size_t i = 0; i < kMotorCount; ++i) startup.on_configured(i);
     startup.on_dead_man_acknowledged();
-    const double start = params.joints.rear_min_rad + allowed;
-    std::array<double, 2> shaft{params.joints.front_min_rad + 0.5, start};
+    const std::array<double, 2> start{lowest[0] + 0.5, lowest[1] + allowed};
+    std::array<double, 2> shaft = start;
     startup.take_joints({0.5, allowed});
     EXPECT_FALSE(startup.take_up_skipped(0));
     EXPECT_EQ(startup.take_up_skipped(1), allowed < min_start) << allowed;
     EXPECT_EQ(startup.take_up_travel_rad(1), allowed);
-    std::vector<double> sent;  // the rear duties, each acting `delay` cycles after it was sent
-    double speed = 0.0;
+    std::array<std::vector<double>, 2> sent;  // the duties sent, the latest last
+    std::array<double, 2> read_shaft = shaft;
+    std::array<double, 2> read_speed{};
+    double time_s = 0.0;
     for (int k = 0; k < 400 && startup.phase() == StartupPhase::kCalibrate; ++k) {
-      const auto duty = startup.calibrate(k * h, shaft, {0.0, speed}, {0.0, -free_speed});
-      sent.push_back(duty[1]);
-      const double acting = sent.size() > delay ? sent[sent.size() - 1 - delay] : 0.0;
-      speed = acting == 0.0 ? 0.0 : -free_speed;
-      shaft[1] += speed * h;
+      time_s = k * h;
+      const auto duty = startup.calibrate(time_s, read_shaft, read_speed,
+                                          {-free_speed[0], -free_speed[1]});
+      for (std::size_t j = 0; j < 2; ++j) {
+        sent[j].push_back(duty[j]);
+        double speed = 0.0;
+        for (std::size_t d = 0; d < delta.size() && d < sent[j].size(); ++d) {
+          if (sent[j][sent[j].size() - 1 - d] != 0.0) speed -= delta[d] * free_speed[j];
+        }
+        shaft[j] += speed * h;
+        read_speed[j] = speed;  // what the duties did, read with the next request
+      }
+      read_shaft = shaft;
     }
     EXPECT_EQ(startup.phase(), StartupPhase::kDone) << allowed;
+    EXPECT_LT(time_s, 1.0) << allowed << ": both shafts stopped, not timed out";
+    EXPECT_GE(shaft[1], std::min(start[1], lowest[1])) << allowed << ": the bound holds";
     if (allowed < min_start) {
-      EXPECT_EQ(shaft[1], start) << allowed << ": not started";
+      EXPECT_EQ(shaft[1], start[1]) << allowed << ": not started";
     } else {
-      EXPECT_LT(shaft[1], start - 0.5 * allowed) << allowed << ": the take-up ran";
-      EXPECT_GE(shaft[1], params.joints.rear_min_rad - 1e-9) << allowed;
+      EXPECT_LT(shaft[1], start[1] - 0.5 * min_start) << allowed << ": the take-up ran";
     }
   }
 }
