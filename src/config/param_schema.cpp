@@ -130,6 +130,10 @@ constexpr ParamSpec kPower[] = {
     {.key = "motor_dead_zone_v",
      .field = field<&PowerParams::current, &SupplyCurrentParams::motor_dead_zone_v>, .min = 0.0,
      .max = 24.0, .unit = "V", .about = "|d|·U below this does not turn the motor"},
+    {.key = "motor_plugging_droop_radps_per_nm",
+     .field = field<&PowerParams::current, &SupplyCurrentParams::motor_plugging_droop_radps_per_nm>,
+     .min = 0.001, .max = 1.0, .unit = "rad/(s N m)", .symbol = "B⁻", .source = "(4.7)",
+     .about = "a shaft turned against its duty gives |w|/B more torque than its stall torque"},
 };
 
 constexpr ParamSpec kLoad[] = {

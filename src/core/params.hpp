@@ -90,6 +90,8 @@ struct SupplyCurrentParams {
   double motor_stall_torque_per_v_nm = 1.74;     // stall torque per volt above the dead zone
   double motor_holding_torque_nm = 5.0;          // the gearhead's and the bridge's hold
   double motor_dead_zone_v = 1.0;                // |d|·U below this does not turn the motor
+  // B⁻ of (4.7): a shaft turned against its duty (plugging) gives |w|/B more than its stall torque
+  double motor_plugging_droop_radps_per_nm = 0.015;
 };
 
 // (4.5) voltage drop and chapter 6.1 power management.

@@ -334,11 +334,12 @@ TEST(StartupProcedure43, ARestartedShaftAllowedLessThanAStartFromRestRunsOnDoesN
   const double h = params.cycle.period_s;
   const adaptation::MotorCurve curve(
       adaptation::select_motor_curve(params.motor_curves, params.cycle.icr));
+  const double u = params.motors.nominal_supply_v;
   const std::array<double, 2> free_speed{
       adaptation::no_load_velocity(curve, params.operator_input.calibration_duty,
-                                   params.motors.scale[kFrontJoint], 24.0, 24.0),
+                                   params.motors.scale[kFrontJoint], u, u),
       adaptation::no_load_velocity(curve, params.operator_input.calibration_duty,
-                                   params.motors.scale[kRearJoint], 24.0, 24.0)};
+                                   params.motors.scale[kRearJoint], u, u)};
   const std::vector<double>& delta =
       adaptation::select_response(params.responses, h, params.cycle.con).delta;
   const Startup probe(params);

@@ -17,8 +17,16 @@ double motor_current_bound_a(double duty, double shaft_velocity_radps, double su
   if (duty == 0.0) return 0.0;
   const double volts_above_dead_zone =
       std::max(0.0, std::abs(duty) * supply_v - params.motor_dead_zone_v);
-  const double stall_nm = std::max(params.motor_holding_torque_nm,
-                                   params.motor_stall_torque_per_v_nm * volts_above_dead_zone);
+  double stall_nm = std::max(params.motor_holding_torque_nm,
+                             params.motor_stall_torque_per_v_nm * volts_above_dead_zone);
+  if (duty * shaft_velocity_radps < 0.0) {  // plugging: the back-EMF adds to the bridge's voltage
+    const double full_duty_nm = std::max(
+        params.motor_holding_torque_nm,
+        params.motor_stall_torque_per_v_nm * std::max(0.0, supply_v - params.motor_dead_zone_v));
+    const double back_emf_nm =
+        std::abs(shaft_velocity_radps) / params.motor_plugging_droop_radps_per_nm;
+    stall_nm = std::max(stall_nm, std::min(full_duty_nm, stall_nm + back_emf_nm));
+  }
   return params.motor_no_load_current_a +
          params.motor_current_per_radps_a * std::abs(shaft_velocity_radps) +
          std::abs(duty) * stall_nm / params.motor_torque_constant_nm_per_a;

@@ -9,11 +9,16 @@
 // One motor at duty d, shaft speed w and supply U (every quantity at the output shaft):
 //   x = max(0, |d|·U − U_dz)                  the voltage that turns the motor
 //   τ_s = max(τ_hold, c·x)                     the most torque it can give (its stall torque)
+//   τ_s += |w|/B⁻, at most c·(U − U_dz)        if w turns against d (plugging, below)
 //   I = I0 + I1·|w| + |d|·τ_s/k_t   (d ≠ 0),   I = 0   (d = 0: the bridge does not switch)
 // The motor's current τ/k_t flows from the supply only while the bridge conducts, a share |d| of
 // each PWM period (the bridge is a buck converter: U·I_supply = |d|·U·I_motor), and no load can
-// make τ exceed τ_s; so I bounds what the motor draws, whatever it meets. The rover's bound is
-// the stationary rover's I_base (chapter 3.1) plus the eight motors'.
+// make τ exceed τ_s; so I bounds what the motor draws, whatever it meets. A shaft that turns
+// against its duty (a wheel still spinning the old way as a spin reverses, or dragged back) adds
+// its back-EMF to the bridge's voltage: its torque along d grows past the stall torque by |w|/B⁻
+// of (4.7), up to the full-duty stall torque, and its current is drawn from the supply like a
+// motoring one's. w is the last measured speed (w̄, a cycle old); a plugging shaft slows. The
+// rover's bound is the stationary rover's I_base (chapter 3.1) plus the eight motors'.
 //
 // The duty bound: D_I, the largest D of (5.5) whose duties — the motions of (5.4) scaled under D,
 // the load distribution, (4.3)'s inverse, then chapter 3.2's slew rule from the duties sent last —

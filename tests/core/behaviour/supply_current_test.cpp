@@ -34,6 +34,25 @@ TEST(SupplyCurrent, AMotorDrawsItsStallTorquesCurrentForTheShareOfThePeriodItCon
   EXPECT_EQ(motor_current_bound_a(0.0, 2.0, 24.0, p), 0.0);
 }
 
+// A shaft turning against its duty (plugging: a wheel still spinning the old way as a spin
+// reverses) adds its back-EMF to the bridge's voltage: its torque along d may pass the stall
+// torque by |w|/B⁻, at most the full-duty stall torque 1.74·23 = 40.02 N·m. At d = 0.2 and 24 V:
+// τ_s = 1.74·3.8 = 6.612 N·m; turning back at 0.3 rad/s, 6.612 + 0.3/0.015 = 26.612 N·m; at
+// 1 rad/s, 6.612 + 66.7, held at 40.02. Along d, or standing, the stall torque alone.
+TEST(SupplyCurrent, AShaftTurningAgainstItsDutyMayPassItsStallTorque) {
+  const SupplyCurrentParams p;
+  const double stall = 1.74 * 3.8;
+  EXPECT_NEAR(motor_current_bound_a(0.2, 0.3, 24.0, p), 0.12 + 0.018 + 0.2 * stall / 7.5,
+              kTolerance);
+  EXPECT_NEAR(motor_current_bound_a(0.2, 0.0, 24.0, p), 0.12 + 0.2 * stall / 7.5, kTolerance);
+  EXPECT_NEAR(motor_current_bound_a(0.2, -0.3, 24.0, p),
+              0.12 + 0.018 + 0.2 * (stall + 0.3 / 0.015) / 7.5, kTolerance);
+  EXPECT_NEAR(motor_current_bound_a(-0.2, 0.3, 24.0, p),
+              0.12 + 0.018 + 0.2 * (stall + 0.3 / 0.015) / 7.5, kTolerance);
+  EXPECT_NEAR(motor_current_bound_a(0.2, -1.0, 24.0, p), 0.12 + 0.06 + 0.2 * 1.74 * 23.0 / 7.5,
+              kTolerance);
+}
+
 TEST(SupplyCurrent, RejectsWhatIsNotADutyASpeedOrAVoltage) {
   const SupplyCurrentParams p;
   EXPECT_THAT(invalid_argument_message([&] { motor_current_bound_a(1.5, 0.0, 24.0, p); }),
