@@ -316,6 +316,9 @@ constexpr ParamSpec kBehaviours[] = {
      .field = field<&BehaviourParams::axle_placement_rate_per_s>,
      .min = 0.0, .max = 1000.0, .unit = "1/s", .source = "chapter 6.2.3",
      .about = "a faster one moves ρ gradually at this rate"},
+    {.key = "axle_placement_hold_s", .field = field<&BehaviourParams::axle_placement_hold_s>,
+     .min = 0.0, .max = 10.0, .unit = "s", .source = "chapter 6.2.3, our extension",
+     .about = "the axle ρ moves stopped though driven this long: ρ → 1 − ρ (docs/decisions.md)"},
 };
 
 constexpr ParamSpec kSafety[] = {

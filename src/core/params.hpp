@@ -209,6 +209,7 @@ struct BehaviourParams {
   double axle_placement_load_radps = 0.5;  // |l6|, |l7| above this: the joint is blocked
   double axle_placement_speed_radps = 0.1; // joint slower than this: switch ρ → 1 − ρ at once
   double axle_placement_rate_per_s = 1.0;  // faster: move ρ toward 1 − ρ at this rate
+  double axle_placement_hold_s = 0.5;      // the axle ρ moves stopped this long: ρ → 1 − ρ
 };
 
 // Chapter 3.2's rules for duty cycles, Field Experiment 6.7 and chapter 3.3's dead man's switch.

@@ -295,12 +295,23 @@ MotorVector MotionController::walking_motion(JointCommands joints,
                                              const RuntimeSettings& settings,
                                              DriverStatus& status) {
   const double h = input.period_s;
+  // 6.2.3's axles: how much slower than driven each axle's wheels turn, once both stopped.
+  const auto axle = [&](std::size_t left, std::size_t right) {
+    return behaviour::axle_resistance_radps(
+        load_[left], status.motors[left].no_load_velocity_radps, load_[right],
+        status.motors[right].no_load_velocity_radps, params_->behaviours);
+  };
+  const double front_axle = axle(kFrontLeft, kFrontRight);
+  const double centre_axle = axle(kCenterLeft, kCenterRight);
+  const double rear_axle = axle(kBackLeft, kBackRight);
   const auto front_place = behaviour::next_axle_placement(
       front_placement_, joints.factors.front, load_[kFrontJoint],
-      status.motors[kFrontJoint].velocity_radps, h, params_->behaviours, settings.switches);
+      status.motors[kFrontJoint].velocity_radps, {front_axle, centre_axle}, h,
+      params_->behaviours, settings.switches);
   const auto rear_place = behaviour::next_axle_placement(
       rear_placement_, joints.factors.rear, load_[kRearJoint],
-      status.motors[kRearJoint].velocity_radps, h, params_->behaviours, settings.switches);
+      status.motors[kRearJoint].velocity_radps, {rear_axle, centre_axle}, h,
+      params_->behaviours, settings.switches);
   front_placement_ = front_place.state;
   rear_placement_ = rear_place.state;
   status.front_axle_factor = front_place.placement;
