@@ -40,6 +40,10 @@ double stall_torque_nm(const MotorTruth& motor, double duty, double supply_v, in
                                                effective_voltage_v(motor, duty, supply_v, icr));
 }
 
+double brake_torque_nm(const MotorTruth& motor, double supply_v, int icr) {
+  return stall_torque_nm(motor, 1.0, supply_v, icr);
+}
+
 double motor_current_a(const MotorTruth& motor, double duty, int icr, double torque_nm,
                        double shaft_speed_radps) {
   if (duty == 0.0) {
@@ -72,7 +76,8 @@ MotorLine MotorModel::step(double duty, double supply_v, int icr, double shaft_s
   // than ω0 in the direction of d (the motor's own torque then opposes d: it generates).
   const bool same_sign = (shaft_speed_radps - no_load_speed_radps_) * duty >= 0.0;
   return {no_load_speed_radps_, droop_radps_per_nm(truth_, duty, icr, same_sign),
-          stall_torque_nm(truth_, duty, supply_v, icr)};
+          stall_torque_nm(truth_, duty, supply_v, icr),
+          brake_torque_nm(truth_, supply_v, icr)};
 }
 
 }  // namespace marsokhod::sim

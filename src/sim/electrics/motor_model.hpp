@@ -31,7 +31,8 @@ inline constexpr int kReferenceIcr = 511;  // the icr at which MotorTruth's valu
 struct MotorLine {
   double no_load_speed_radps = 0.0;  // ω0, after the lag
   double droop_radps_per_nm = 0.0;   // B
-  double stall_torque_nm = 0.0;      // τ_stall
+  double stall_torque_nm = 0.0;      // τ_stall: the most it delivers along d (motoring)
+  double brake_torque_nm = 0.0;      // the most it resists a load driving it (generating)
 };
 
 // The same for all eight motors; field for field the physics' MotorDrive.
@@ -39,6 +40,7 @@ struct MotorDriveCommand {
   MotorVector no_load_speed_radps{};
   MotorVector droop_radps_per_nm{};
   MotorVector stall_torque_nm{};
+  MotorVector brake_torque_nm{};
 };
 
 // Effective armature voltage above the dead zone, x(d, U, icr) [V], ≥ 0.
@@ -52,6 +54,14 @@ double droop_radps_per_nm(const MotorTruth& motor, double duty, int icr, bool sa
 
 // τ_stall [N·m].
 double stall_torque_nm(const MotorTruth& motor, double duty, double supply_v, int icr);
+
+// The most a motor resists a load that drives it [N·m]: a shaft driven past its no-load speed
+// raises a back-EMF above the bridge's average voltage (it generates), one driven against its
+// duty adds its back-EMF to it (it plugs), and the current grows with the speed, not limited by
+// the duty. It is bounded here at the full-duty stall torque (the armature current U/R, the most
+// the bridge and the winding carry), whatever the duty; the physics lets a wheel's bound grow
+// from τ_stall toward it with the speed (rover_physics.hpp).
+double brake_torque_nm(const MotorTruth& motor, double supply_v, int icr);
 
 // Supply current of the motor's bridge [A].
 double motor_current_a(const MotorTruth& motor, double duty, int icr, double torque_nm,

@@ -35,6 +35,7 @@ RoverElectrics::RoverElectrics(const SimTruth& truth)
     const MotorTruth& motor = motors_[i].truth();
     output_.drive.droop_radps_per_nm[i] = droop_radps_per_nm(motor, 0.0, kReferenceIcr, true);
     output_.drive.stall_torque_nm[i] = stall_torque_nm(motor, 0.0, output_.supply_v, kReferenceIcr);
+    output_.drive.brake_torque_nm[i] = brake_torque_nm(motor, output_.supply_v, kReferenceIcr);
   }
   if (const Battery* battery = std::get_if<Battery>(&supply_)) {
     output_.state_of_charge = battery->state_of_charge();
@@ -79,6 +80,7 @@ const ElectricsOutput& RoverElectrics::step(const ElectricsInput& input, double 
     output_.drive.no_load_speed_radps[i] = line.no_load_speed_radps;
     output_.drive.droop_radps_per_nm[i] = line.droop_radps_per_nm;
     output_.drive.stall_torque_nm[i] = line.stall_torque_nm;
+    output_.drive.brake_torque_nm[i] = line.brake_torque_nm;
   }
   previous_duty_ = input.duty;
   previous_icr_ = input.icr;

@@ -183,8 +183,20 @@ void RoverPhysics::Impl::apply_drive() {
     const double gain = powered ? 1.0 / drive.droop_radps_per_nm[motor] : 0.0;
     m.actuator_gainprm[actuator * mjNGAIN] = gain;
     m.actuator_biasprm[actuator * mjNBIAS + 2] = -gain;
-    m.actuator_forcerange[actuator * 2] = -drive.stall_torque_nm[motor];
-    m.actuator_forcerange[actuator * 2 + 1] = drive.stall_torque_nm[motor];
+    // A torque along the shaft's motion (or holding it still) is the motor's, at most τ_stall. A
+    // wheel's torque against its motion is a generating or plugging motor's: its back-EMF adds
+    // to the current, so the bound grows from τ_stall by |ω|/B (the line's own slope), up to the
+    // brake torque. Joints keep τ_stall both ways: their lock bears a load that drives them
+    // (apply_joint_lock_brake).
+    const double stall = drive.stall_torque_nm[motor];
+    const double speed_radps = data->qvel[ids.shaft_dof[motor]];
+    const double against =
+        motor < kWheelCount
+            ? std::clamp(stall + std::abs(speed_radps) / drive.droop_radps_per_nm[motor], stall,
+                         std::max(stall, drive.brake_torque_nm[motor]))
+            : stall;
+    m.actuator_forcerange[actuator * 2] = speed_radps > 0.0 ? -against : -stall;
+    m.actuator_forcerange[actuator * 2 + 1] = speed_radps < 0.0 ? against : stall;
     data->ctrl[actuator] = drive.no_load_speed_radps[motor];
   }
 }
@@ -272,9 +284,11 @@ void RoverPhysics::set_drive(const MotorDrive& drive) {
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     if (!std::isfinite(drive.no_load_speed_radps[i]) || !(drive.droop_radps_per_nm[i] > 0.0) ||
         !std::isfinite(drive.droop_radps_per_nm[i]) || !(drive.stall_torque_nm[i] >= 0.0) ||
-        !std::isfinite(drive.stall_torque_nm[i])) {
+        !std::isfinite(drive.stall_torque_nm[i]) || !(drive.brake_torque_nm[i] >= 0.0) ||
+        !std::isfinite(drive.brake_torque_nm[i])) {
       throw std::invalid_argument(std::string("physics: the drive of motor ") + kMotorNames[i] +
-                                  " needs a finite speed, droop > 0 and stall torque >= 0");
+                                  " needs a finite speed, droop > 0, and stall and brake torques"
+                                  " >= 0");
     }
   }
   impl_->drive = drive;

@@ -8,9 +8,11 @@
 // Motors are driven by their speed–torque line at the output shaft: each step the motor delivers
 //   τ_i = clamp((ω0_i − ω_i)/droop_i, −stall_i, +stall_i)
 // where ω0_i is the no-load speed the electrics computed from duty cycle and supply voltage, and
-// ω_i the shaft speed. Wheels (0–5) turn with their shaft. A joint's shaft p̄ (6, 7) drives the
-// joint through the backlash gap of Procedure 4.1; the joint drive is not back-drivable
-// (chapter 5.3's lock): outside the gap's contact the joint holds its angle whatever the load.
+// ω_i the shaft speed. A wheel's torque against its shaft's motion (a load driving the motor: it
+// generates or plugs) is clamped at min(stall_i + |ω_i|/droop_i, brake_i) instead, at least
+// stall_i. Wheels (0–5) turn with their shaft. A joint's shaft p̄ (6, 7) drives the joint
+// through the backlash gap of Procedure 4.1; the joint drive is not back-drivable (chapter 5.3's
+// lock): outside the gap's contact the joint holds its angle whatever the load.
 #pragma once
 
 #include <array>
@@ -64,6 +66,7 @@ struct MotorDrive {
   MotorVector no_load_speed_radps{};  // ω0_i at the output shaft
   MotorVector droop_radps_per_nm{};   // speed lost per N·m of load (B of (4.6))
   MotorVector stall_torque_nm{};      // the most the motor can deliver
+  MotorVector brake_torque_nm{};      // a wheel's most against its shaft's motion, at speed
 };
 
 // How fast Procedure 3.4's hand turns an exterior axle.

@@ -94,7 +94,7 @@ void SimulatedRover::physics_step() {
                              physics_.shaft_torque_nm()};
   const ElectricsOutput& e = electrics_.step(input, dt);
   physics_.set_drive({e.drive.no_load_speed_radps, e.drive.droop_radps_per_nm,
-                      e.drive.stall_torque_nm});
+                      e.drive.stall_torque_nm, e.drive.brake_torque_nm});
   physics_.step();
   energy_j_ += e.supply_v * e.total_current_a * dt;
   ++steps_;

@@ -127,6 +127,21 @@ TEST(SimMotorModel, StallTorqueFollowsTheEffectiveVoltage) {
   EXPECT_EQ(stall_torque_nm(motor, 0.1, 24.0, 511), 5.0);  // 1.74·1.4 V is below it
 }
 
+// A generating motor brakes up to the full-duty stall torque, the armature's U/R, whatever the
+// duty: at d = 0 and 0.1 τ_stall is the 5 N·m holding torque, the brake 1.74·(24 − 1) N·m.
+TEST(SimMotorModel, BrakeTorqueIsTheStallTorqueAtFullDutyWhateverTheDuty) {
+  const MotorTruth motor = unit_motor();
+  EXPECT_NEAR(brake_torque_nm(motor, 24.0, 511), 1.74 * 23.0, 1e-12);
+  for (const double duty : {0.0, 0.1, -0.5, 1.0}) {
+    MotorModel model(motor);
+    const MotorLine line = model.step(duty, 24.0, 511, 0.0, 0.001);
+    EXPECT_NEAR(line.brake_torque_nm, 1.74 * 23.0, 1e-12) << duty;
+    EXPECT_LE(line.stall_torque_nm, line.brake_torque_nm) << duty;
+  }
+  MotorModel idle(motor);
+  EXPECT_EQ(idle.step(0.0, 24.0, 511, 0.0, 0.001).stall_torque_nm, 5.0);
+}
+
 TEST(SimMotorModel, ZetaScalesTheSpeed) {
   MotorTruth motor = unit_motor();
   const double bench = steady_no_load_speed_radps(motor, 0.7, 24.0, 511);

@@ -79,6 +79,68 @@ TEST(RoverPhysics, WheelTorqueFollowsTheSpeedTorqueLine) {
   expect_healthy(physics);
 }
 
+// A load that drives a wheel makes its motor generate, and a generating motor's braking grows with
+// the overspeed, not bounded by the duty's τ_stall (5 N·m at d = 0). On the stand, a weight of peak
+// 20 N·m strapped to a wheel at d = 0 (ω0 = 0, B = 0.045 rad/s per N·m, the low-duty droop) comes
+// down on the line at most 20·B = 0.9 rad/s when the brake may grow with the speed, τ_stall +
+// |ω|/B, up to the full-duty stall torque (40 N·m); bounded at τ_stall (brake 0), the weight
+// swings down with only 5 N·m against it, ten times faster (10.2 rad/s).
+TEST(RoverPhysics, AWheelItsLoadDrivesBrakesOnItsLineBeyondTheStallTorque) {
+  const auto peak_speed = [](double brake_nm) {
+    RoverPhysics physics(Params{}, TerrainSpec{});
+    physics.place_on_stand(0.0, 0.0);
+    physics.set_drive(drive_at(all_wheels(0.5), 100.0));  // the weight 0.3 rad off the top
+    run(physics, 600);
+    EXPECT_NEAR(physics.shaft_angle_rad()[kFrontLeft], 0.3, 0.05);
+    physics.strap_weight(kFrontLeft, 20.0);
+    MotorDrive idle = drive_at(all_wheels(0.0), 5.0);
+    idle.droop_radps_per_nm.fill(0.045);
+    idle.brake_torque_nm.fill(brake_nm);
+    double fastest = 0.0;
+    for (int step = 0; step < 4000; ++step) {
+      physics.set_drive(idle);
+      physics.step();
+      fastest = std::max(fastest, std::abs(physics.shaft_velocity_radps()[kFrontLeft]));
+    }
+    EXPECT_GT(physics.shaft_angle_rad()[kFrontLeft], 1.5);  // it came down
+    expect_healthy(physics);
+    return fastest;
+  };
+  const double braked = peak_speed(40.0);
+  const double on_stall_alone = peak_speed(0.0);
+  EXPECT_LT(braked, 20.0 * 0.045 * 1.05);
+  EXPECT_GT(braked, 20.0 * 0.045 * 0.8);
+  EXPECT_GT(on_stall_alone, 3.0 * braked);
+}
+
+// Plugging: a wheel driven forward (ω0 = 0.5 rad/s, τ_stall 5 N·m, B = 0.045) but turned back by a
+// heavier load (a strapped weight of peak 8 N·m, from 1.2 rad behind the top) adds its back-EMF to
+// the bridge's voltage: its torque along d grows from τ_stall by |ω|/B, continuously, so the weight
+// comes down at most (8 − 5)·B = 0.135 rad/s. (Its line, (ω0 + |ω|)/B, would give 11 N·m and more:
+// the bound, not the line, holds it.)
+TEST(RoverPhysics, AWheelTurnedAgainstItsDutyResistsWithTheStallTorquePlusItsSpeedOverB) {
+  RoverPhysics physics(Params{}, TerrainSpec{});
+  physics.place_on_stand(0.0, 0.0);
+  physics.set_drive(drive_at(all_wheels(-0.5), 100.0));  // the weight 1.2 rad behind the top
+  run(physics, 2400);
+  physics.set_drive(drive_at(all_wheels(0.0), 100.0));  // and held there
+  run(physics, 300);
+  EXPECT_NEAR(physics.shaft_angle_rad()[kFrontLeft], -1.2, 0.05);
+  physics.strap_weight(kFrontLeft, 8.0);
+  MotorDrive forward = drive_at(all_wheels(0.5), 5.0);
+  forward.droop_radps_per_nm.fill(0.045);
+  forward.brake_torque_nm.fill(40.0);
+  double fastest_back = 0.0;
+  for (int step = 0; step < 6000; ++step) {
+    physics.set_drive(forward);
+    physics.step();
+    fastest_back = std::max(fastest_back, -physics.shaft_velocity_radps()[kFrontLeft]);
+  }
+  EXPECT_LT(physics.shaft_angle_rad()[kFrontLeft], -1.8);  // it came down, backwards
+  EXPECT_NEAR(fastest_back, 3.0 * 0.045, 0.1 * 3.0 * 0.045);
+  expect_healthy(physics);
+}
+
 // Shaft travel from the start until the joint has moved by 1 mrad, the shaft turning at `speed`.
 double shaft_travel_before_joint_moves(RoverPhysics& physics, std::size_t motor,
                                        double speed_radps) {
