@@ -75,6 +75,11 @@ ProcedureResult fit_voltage(const std::vector<VoltagePoint>& points,
   sensors.insert_or_assign("supply_v_per_count", fit.gain);
   sensors.insert_or_assign("supply_offset_v", fit.offset);
   result.values.insert_or_assign("sensors", std::move(sensors));
+  // What a calibrated reading may still lie below U: the line's worst residual and one count (a
+  // single reading's rounding and noise). The tether's current bound takes U + this.
+  toml::table power;
+  power.insert_or_assign("supply_reading_error_v", fit.residuals.max_abs + fit.gain);
+  result.values.insert_or_assign("power", std::move(power));
   result.quality["points"] = static_cast<double>(points.size());
   result.quality["rms_residual_v"] = fit.residuals.rms;
   result.quality["max_residual_v"] = fit.residuals.max_abs;

@@ -110,6 +110,12 @@ constexpr ParamSpec kPower[] = {
      .field = field<&PowerParams::current, &SupplyCurrentParams::tether_current_limit_a>, .min = 0.5,
      .max = 30.0, .unit = "A", .source = "Field Experiment 1.1",
      .about = "the laboratory supply's current limit (PS 613: 6 A)"},
+    {.key = "supply_reading_error_v",
+     .field = field<&PowerParams::current, &SupplyCurrentParams::supply_reading_error_v>,
+     .min = 0.0, .max = 5.0, .unit = "V", .source = "Procedure 3.5",
+     .about = "the most µ8's reading of U may lie below the supply (the current bound takes U + "
+              "this): 1.2 V before Procedure 3.5, about 0.1 V after",
+     .calibrated = true},
     {.key = "motor_no_load_current_a",
      .field = field<&PowerParams::current, &SupplyCurrentParams::motor_no_load_current_a>,
      .min = 0.0, .max = 5.0, .unit = "A", .about = "a motor's bridge switching, the shaft free"},

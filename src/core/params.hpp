@@ -84,6 +84,10 @@ enum class SupplyKind { kBattery, kTether };  // the batteries, or the laborator
 struct SupplyCurrentParams {
   double base_current_a = 1.05;              // chapter 3.1: computer, bridges, controllers
   double tether_current_limit_a = 6.0;       // the PS 613's current limit (Figure 4.2)
+  // The most µ8's reading of U may lie below the true supply: the divider's and the ADC
+  // reference's ±1.5 % over the conversion's span (U − offset ≈ 65 V at 24 V) and 3 counts of
+  // offset, 1.2 V before Procedure 3.5 (after it, about 0.1 V). The bound is worked out at U + this.
+  double supply_reading_error_v = 1.2;
   double motor_no_load_current_a = 0.12;     // a bridge switching, the motor free
   double motor_current_per_radps_a = 0.06;   // friction losses growing with the shaft's speed
   double motor_torque_constant_nm_per_a = 7.5;   // k_t at the output shaft

@@ -427,8 +427,11 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
 double MotionController::supply_current_bound_a(const MotorVector& duty,
                                                 const MotionInput& input) const {
   const SupplyCurrentParams& current = params_->power.current;
-  // The higher of U and Ū: a stall torque grows with the voltage the supply recovers to.
-  const double supply_v = std::max(input.supply_v, input.reference_supply_v);
+  // The higher of U and Ū: a stall torque grows with the voltage the supply recovers to. And
+  // µ8's reading may lie below the supply by the conversion's error: the bound is worked out at
+  // the highest supply the reading admits.
+  const double supply_v =
+      std::max(input.supply_v, input.reference_supply_v) + current.supply_reading_error_v;
   double total_a = current.base_current_a;
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     total_a += behaviour::motor_current_bound_a(duty[i], input.shaft_velocity_radps[i], supply_v,

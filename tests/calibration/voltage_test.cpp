@@ -34,6 +34,12 @@ TEST(VoltageProcedure, RecoversTheUnitsSupplyConversion) {
   EXPECT_GT(worst_nominal, 0.05) << "the drawn unit must differ from the configuration";
   EXPECT_NEAR(fitted.sensors.supply.gain, truth.gain, 0.001 * truth.gain);
   EXPECT_LT(result.quality.at("max_residual_v"), 0.05);
+  // The reading's error the tether's current bound allows for: the worst residual and a count,
+  // more than the fitted line is off the unit's and a tenth of the uncalibrated 1.2 V.
+  EXPECT_NEAR(result.values["power"]["supply_reading_error_v"].value_or(0.0),
+              result.quality.at("max_residual_v") + fitted.sensors.supply.gain, 1e-12);
+  EXPECT_GT(fitted.power.current.supply_reading_error_v, worst_fitted);
+  EXPECT_LT(fitted.power.current.supply_reading_error_v, 0.12);
   EXPECT_EQ(result.quality.at("points"), 8.0);
   // Back at the nominal voltage for whatever comes next.
   EXPECT_NEAR(bench.measure_supply_v(), 24.0, 0.2);

@@ -18,7 +18,11 @@
 // its back-EMF to the bridge's voltage: its torque along d grows past the stall torque by |w|/B⁻
 // of (4.7), up to the full-duty stall torque, and its current is drawn from the supply like a
 // motoring one's. w is the last measured speed (w̄, a cycle old); a plugging shaft slows. The
-// rover's bound is the stationary rover's I_base (chapter 3.1) plus the eight motors'.
+// rover's bound is the stationary rover's I_base (chapter 3.1) plus the eight motors'. U is the
+// highest supply µ8's reading admits (the driver's caller, motion_controller.cpp): max(U, Ū) plus
+// `supply_reading_error_v`, the conversion's error before Procedure 3.5 (1.2 V: the divider's
+// ±1.5 % over the conversion's 65 V span and 3 counts). Without it a unit reading U 0.9 V low
+// drew up to 6.22 A at a spin's reversal (units 171 and 195 of 1–400).
 //
 // The duty bound: D_I, the largest D of (5.5) whose duties — the motions of (5.4) scaled under D,
 // the load distribution, (4.3)'s inverse, then chapter 3.2's slew rule from the duties sent last —
