@@ -210,7 +210,7 @@ void write_velocity(const navigation::VelocityCommand& c, Json& object) {
 }
 
 std::vector<std::string_view> mission_keys() {
-  return {"kind", "angle_rad", "distance_m", "waypoints"};
+  return {"kind", "angle_rad", "distance_m", "waypoints", "settle_s"};
 }
 
 navigation::MissionRequest read_mission(const Json& object, const Reading& how) {
@@ -276,6 +276,9 @@ navigation::MissionRequest read_mission(const Json& object, const Reading& how) 
                              read_number(w.at("y_m"), at + ".y_m")});
     }
   }
+  if (const auto it = object.find("settle_s"); it != object.end()) {
+    r.settle_s = read_number(*it, path(how, "settle_s"));
+  }
   if (auto error = navigation::check_request(r)) {
     throw FieldError(path(how, error->field), std::string(how.prefix) + error->message);
   }
@@ -301,6 +304,7 @@ void write_mission(const navigation::MissionRequest& r, Json& object) {
     case navigation::MissionKind::kVelocity:
       break;
   }
+  if (r.settle_s) object["settle_s"] = *r.settle_s;
 }
 
 std::vector<std::string_view> settings_keys() {

@@ -52,8 +52,9 @@ navigation::VelocityCommand read_velocity(const nlohmann::json& object, const Re
 void write_velocity(const navigation::VelocityCommand& command, nlohmann::json& object);
 
 // A mission: {"kind":"turn","angle_rad":…} | {"kind":"move","distance_m":…} |
-// {"kind":"goto","waypoints":[{"x_m":…,"y_m":…},…]}; a key of another kind is an error. The
-// limits of check_request are checked always (they do not depend on the configuration).
+// {"kind":"goto","waypoints":[{"x_m":…,"y_m":…},…]}; a key of another kind is an error. Any kind
+// may add "settle_s" (its standing after each leg, in s). The limits of check_request are checked
+// always (they do not depend on the configuration).
 std::vector<std::string_view> mission_keys();
 navigation::MissionRequest read_mission(const nlohmann::json& object, const Reading& how);
 void write_mission(const navigation::MissionRequest& request, nlohmann::json& object);

@@ -71,7 +71,8 @@ Json mission_json(const navigation::MissionStatus& m) {
           {"target_heading_rad", optional_number(m.target_heading_rad)},
           {"remaining_m", optional_number(m.remaining_m)},
           {"remaining_rad", optional_number(m.remaining_rad)},
-          {"corrections", m.corrections}};
+          {"corrections", m.corrections},
+          {"settle_s", m.settle_s}};
 }
 
 }  // namespace

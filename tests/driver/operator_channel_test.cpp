@@ -181,7 +181,7 @@ TEST(OperatorChannel, AMissionIsTakenOnceAndIsNeutral) {
   OperatorChannel channel(params);
   ASSERT_FALSE(channel.receive(targets(1.0), 0.0));
   OperatorInput m;
-  m.mission = navigation::MissionRequest{navigation::MissionKind::kMove, 0.0, 2.0, {}};
+  m.mission = navigation::MissionRequest{navigation::MissionKind::kMove, 0.0, 2.0, {}, {}};
   ASSERT_FALSE(channel.receive(m, 0.1));
   EXPECT_TRUE(is_neutral(channel.targets(0.1)));
   const auto taken = channel.take_mission();
@@ -192,7 +192,7 @@ TEST(OperatorChannel, AMissionIsTakenOnceAndIsNeutral) {
   both.heartbeat = true;
   EXPECT_TRUE(channel.receive(both, 0.2));  // one command per input
   OperatorInput bad;
-  bad.mission = navigation::MissionRequest{navigation::MissionKind::kTurn, 100.0, 0.0, {}};
+  bad.mission = navigation::MissionRequest{navigation::MissionKind::kTurn, 100.0, 0.0, {}, {}};
   const auto why = channel.receive(bad, 0.3);
   ASSERT_TRUE(why);
   EXPECT_NE(why->find("angle_rad"), std::string::npos);

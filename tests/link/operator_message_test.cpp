@@ -301,10 +301,13 @@ namespace {
 // Issue #15's commands: cmd_vel, the missions and the heartbeat.
 TEST(OperatorMessage, RoundTripsTheMissionsAndVelocity) {
   expect_round_trip(VelocityMessage{{3, 1.0}, {0.2, -0.5}});
-  expect_round_trip(MissionMessage{{4, 2.0}, {navigation::MissionKind::kTurn, 1.5, 0.0, {}}});
-  expect_round_trip(MissionMessage{{5, 3.0}, {navigation::MissionKind::kMove, 0.0, -2.0, {}}});
+  expect_round_trip(MissionMessage{{4, 2.0}, {navigation::MissionKind::kTurn, 1.5, 0.0, {}, {}}});
+  expect_round_trip(MissionMessage{{5, 3.0}, {navigation::MissionKind::kMove, 0.0, -2.0, {}, {}}});
   expect_round_trip(MissionMessage{
-      {6, 4.0}, {navigation::MissionKind::kGoto, 0.0, 0.0, {{2.0, 0.0}, {2.0, 2.0}, {-1.5, 0.25}}}});
+      {6, 4.0}, {navigation::MissionKind::kGoto, 0.0, 0.0, {{2.0, 0.0}, {2.0, 2.0}, {-1.5, 0.25}}, {}}});
+  expect_round_trip(MissionMessage{
+      {8, 6.0}, {navigation::MissionKind::kGoto, 0.0, 0.0, {{2.0, 0.0}}, 9.0}});
+  expect_round_trip(MissionMessage{{9, 7.0}, {navigation::MissionKind::kTurn, -0.5, 0.0, {}, 0.5}});
   expect_round_trip(HeartbeatMessage{{7, 5.0}});
   const auto goto_message = message_from(
       R"({"type":"mission","seq":1,"sent_ms":0,"kind":"goto","waypoints":[{"x_m":2,"y_m":0},{"x_m":2,"y_m":2}]})");
@@ -335,6 +338,22 @@ TEST(OperatorMessage, RejectsBadMissionsAndVelocitiesNamingTheField) {
   EXPECT_EQ(error_of(R"({"type":"mission","seq":1,"sent_ms":0,"kind":"move","distance_m":1000})")
                 .field,
             "distance_m");
+  // A mission's own standing: 0 < settle_s ≤ 60 s, a number.
+  const auto stood = operator_input(message_from(
+      R"({"type":"mission","seq":1,"sent_ms":0,"kind":"move","distance_m":1,"settle_s":9})"));
+  ASSERT_TRUE(stood && stood->mission);
+  EXPECT_EQ(stood->mission->settle_s, 9.0);
+  const auto plain = operator_input(message_from(
+      R"({"type":"mission","seq":1,"sent_ms":0,"kind":"move","distance_m":1})"));
+  ASSERT_TRUE(plain && plain->mission);
+  EXPECT_FALSE(plain->mission->settle_s.has_value());
+  for (const char* bad : {"0", "-1", "61", "\"9\"", "null"}) {
+    const MessageError error = error_of(
+        std::string(R"({"type":"mission","seq":1,"sent_ms":0,"kind":"move","distance_m":1,)") +
+        R"("settle_s":)" + bad + "}");
+    EXPECT_EQ(error.field, "settle_s") << bad;
+    EXPECT_NE(error.message.find("settle_s"), std::string::npos) << error.message;
+  }
   EXPECT_EQ(error_of(R"({"type":"heartbeat","seq":1,"sent_ms":0,"v1":0})").field, "v1");
   EXPECT_EQ(error_of(R"({"type":"heartbeat"})").field, "seq");
 }

@@ -19,6 +19,8 @@ export const MAX_TURN_DEG = 720;  // two turns
 export const MAX_MOVE_M = 100;
 export const MAX_WAYPOINTS = 64;
 export const WAYPOINT_LIMIT_M = 1000;
+// A mission's own standing after each leg, 0 < settle_s ≤ 60 s (blank: the configured one).
+export const MAX_SETTLE_S = 60;
 // How long a mission just sent counts as running before the status shows it (statuses come at
 // 20 Hz; a server without missions never shows it).
 export const PENDING_MS = 1000;
@@ -55,24 +57,39 @@ export function checkedNumber(text, what, unit, limit, { zero = false, shownLimi
  *   turn: degrees, + counter-clockwise (sent in radians)
  *   move: metres, − backwards
  *   goto: "x,y; x,y" in metres, odometry frame
+ *   standText: the standing after each leg in seconds, 0 < s ≤ 60; blank sends none (the
+ *   configured navigation.settle_s)
  * @param {'turn' | 'move' | 'goto'} kind
  * @param {string} text
+ * @param {string} [standText]
  * @returns {{ message: MissionInput, error?: undefined } | { error: string, message?: undefined }}
  */
-export function missionMessage(kind, text) {
+export function missionMessage(kind, text, standText = '') {
+  /** @type {{ settle_s?: number }} */
+  const stand = {};
+  if (standText.trim() !== '') {
+    const v = parseNumber(standText);
+    if (v === null) return { error: `stand: "${standText.trim()}" is not a number (s)` };
+    if (!(v > 0 && v <= MAX_SETTLE_S)) {
+      return { error: `stand: ${v} s is out of range; allowed 0 < s ≤ ${MAX_SETTLE_S} s (blank: the configured one)` };
+    }
+    stand.settle_s = v;
+  }
   if (kind === 'turn') {
     const { value, error } = checkedNumber(text, 'turn', '°', MAX_TURN_DEG);
     if (value === undefined) return { error };
-    return { message: { type: 'mission', kind: 'turn', angle_rad: value / DEG_PER_RAD } };
+    return { message: { type: 'mission', kind: 'turn', angle_rad: value / DEG_PER_RAD, ...stand } };
   }
   if (kind === 'move') {
     const { value, error } = checkedNumber(text, 'move', 'm', MAX_MOVE_M);
     if (value === undefined) return { error };
-    return { message: { type: 'mission', kind: 'move', distance_m: value } };
+    return { message: { type: 'mission', kind: 'move', distance_m: value, ...stand } };
   }
   const { waypoints, error } = parseWaypoints(text, { max: MAX_WAYPOINTS, limitM: WAYPOINT_LIMIT_M });
   if (!waypoints) return { error: `go to: ${error}` };
-  return { message: { type: 'mission', kind: 'goto', waypoints: waypoints.map((p) => ({ x_m: p.x, y_m: p.y })) } };
+  return {
+    message: { type: 'mission', kind: 'goto', waypoints: waypoints.map((p) => ({ x_m: p.x, y_m: p.y })), ...stand },
+  };
 }
 
 /**
@@ -149,6 +166,7 @@ export function missionSummary(m, { sent = null, pose } = {}) {
   if (m.state === 'running' && finite(m.remaining_m)) parts.push(`${m.remaining_m.toFixed(2)} m to go`);
   if (m.state === 'running' && finite(m.remaining_rad)) parts.push(`${(m.remaining_rad * DEG_PER_RAD).toFixed(1)}° to turn`);
   if (finite(m.corrections) && m.corrections > 0) parts.push(`${m.corrections} correction${m.corrections === 1 ? '' : 's'}`);
+  if (m.state === 'running' && finite(m.settle_s) && m.settle_s > 0) parts.push(`stands ${m.settle_s} s a leg`);
   return parts.join(' · ');
 }
 
@@ -175,9 +193,10 @@ export class MissionPanel {
       move: control(this.form, 'move_m', HTMLInputElement),
       goto: this.gotoField,
     };
+    const standField = control(this.form, 'settle_s', HTMLInputElement);
     for (const kind of /** @type {const} */ (['turn', 'move', 'goto'])) {
       element(root, `mission-${kind}`, HTMLButtonElement).addEventListener('click', () => {
-        const { message, error } = missionMessage(kind, fields[kind].value);
+        const { message, error } = missionMessage(kind, fields[kind].value, standField.value);
         if (!message) {
           this.say(error, true);
           return;

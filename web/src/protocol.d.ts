@@ -68,6 +68,8 @@ export interface TurnMission {
   type: 'mission';
   kind: 'turn';
   angle_rad: number;
+  /** Standing after each leg [s], 0 < s ≤ 60; left out: navigation.settle_s. */
+  settle_s?: number;
 }
 
 /** Drive a distance along the current heading, < 0 backwards. */
@@ -75,6 +77,8 @@ export interface MoveMission {
   type: 'mission';
   kind: 'move';
   distance_m: number;
+  /** Standing after each leg [s], 0 < s ≤ 60; left out: navigation.settle_s. */
+  settle_s?: number;
 }
 
 /** Drive through 1..64 waypoints in the odometry frame. */
@@ -82,6 +86,8 @@ export interface GotoMission {
   type: 'mission';
   kind: 'goto';
   waypoints: Waypoint[];
+  /** Standing after each leg [s], 0 < s ≤ 60; left out: navigation.settle_s. */
+  settle_s?: number;
 }
 
 export type MissionInput = TurnMission | MoveMission | GotoMission;
@@ -348,6 +354,8 @@ export interface MissionStatus {
   remaining_rad: StatusNumber;
   /** Legs driven again after ending off their target. */
   corrections?: number;
+  /** The mission's standing after each leg [s] (0 before any mission). */
+  settle_s?: number;
 }
 
 export interface Status {

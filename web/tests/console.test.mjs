@@ -208,6 +208,12 @@ test('the mission form refuses bad input before sending, and a click on the map 
   await page.fill('#mission-form input[name=goto]', '1,2; 3');
   await page.click('#mission-goto');
   assert.equal(await result(), 'go to: waypoint 2: "3" is not x,y (two numbers in metres)');
+  await page.fill('#mission-form input[name=move_m]', '1');
+  await page.fill('#mission-form input[name=settle_s]', '0');
+  await page.click('#mission-move');
+  assert.equal(await result(), 'stand: 0 s is out of range; allowed 0 < s ≤ 60 s (blank: the configured one)');
+  await page.fill('#mission-form input[name=settle_s]', '');
+  await page.fill('#mission-form input[name=move_m]', '');
   assert.equal(await page.getAttribute('#mission-result', 'class'), 'hint bad');
   const types = await sentTypes(page);
   assert.ok(types.includes('gamepad'), 'the 20 Hz reading goes on');
@@ -256,8 +262,11 @@ test('a move of 0.3 m from the form runs, is reached, and draws a track of 0.3 m
   await page.click('#map-clear');
   await spyOnSends(page);
   await page.fill('#mission-form input[name=move_m]', '0.3');
+  await page.fill('#mission-form input[name=settle_s]', '2');  // its own standing: 2 s a leg
   await page.click('#mission-move');
-  assert.equal(await page.textContent('#mission-result'), 'sent mission {"kind":"move","distance_m":0.3}');
+  await page.fill('#mission-form input[name=settle_s]', '');
+  assert.equal(await page.textContent('#mission-result'),
+    'sent mission {"kind":"move","distance_m":0.3,"settle_s":2}');
   // Every state the statuses show, in order, until the mission is reached.
   const id = start.mission.id + 1;
   const states = [];
@@ -272,6 +281,7 @@ test('a move of 0.3 m from the form runs, is reached, and draws a track of 0.3 m
   assert.equal(end.mission.state, 'reached', `states ${JSON.stringify(states)}, reason "${end.mission.reason}"`);
   assert.deepEqual(states, ['running', 'reached']);
   assert.equal(end.mission.kind, 'move');
+  assert.equal(end.mission.settle_s, 2, 'the driver stood the mission\'s own 2 s');
   const types = await sentTypes(page);
   assert.ok(types.includes('mission') && types.includes('heartbeat'),
     `the console sent the mission and kept it alive: ${[...new Set(types)]}`);

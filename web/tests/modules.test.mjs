@@ -301,6 +301,17 @@ test('mission messages from the form, and what it refuses', () => {
   assert.equal(missionMessage('move', '-101').error, 'move: -101 is out of range; allowed −100..100 m');
   assert.match(missionMessage('goto', '').error, /^go to: no waypoints/);
   assert.match(missionMessage('goto', '1;2').error, /^go to: waypoint 1: "1" is not x,y/);
+  // The standing after each leg: blank sends none, else 0 < s ≤ 60 for any kind.
+  assert.deepEqual(missionMessage('goto', '2,0', '9'), {
+    message: { type: 'mission', kind: 'goto', waypoints: [{ x_m: 2, y_m: 0 }], settle_s: 9 },
+  });
+  assert.equal(missionMessage('move', '1', ' 60 ').message.settle_s, 60);
+  assert.equal(missionMessage('turn', '90', '0.5').message.settle_s, 0.5);
+  assert.equal('settle_s' in missionMessage('move', '1', '  ').message, false, 'blank: none');
+  assert.equal(missionMessage('move', '1', '0').error,
+    'stand: 0 s is out of range; allowed 0 < s ≤ 60 s (blank: the configured one)');
+  assert.match(missionMessage('move', '1', '61').error, /^stand: 61 s is out of range/);
+  assert.equal(missionMessage('move', '1', 'long').error, 'stand: "long" is not a number (s)');
 });
 
 test('while a mission runs and the sticks rest, a heartbeat at 20 Hz replaces the reading', () => {
@@ -341,6 +352,11 @@ test('the mission\'s status in one line', () => {
     waypoints: [[2, 0], [2, 2]], target_heading_rad: 1.57, remaining_m: 1.2, remaining_rad: null,
   }), '#3 goto · running · leg 2 of 2 · 42 % · 1.20 m to go');
   assert.equal(missionSummary({
+    id: 3, kind: 'goto', state: 'running', reason: '', progress: 0.42, leg: 1,
+    waypoints: [[2, 0], [2, 2]], target_heading_rad: 1.57, remaining_m: 1.2, remaining_rad: null,
+    settle_s: 9,
+  }), '#3 goto · running · leg 2 of 2 · 42 % · 1.20 m to go · stands 9 s a leg');
+  assert.equal(missionSummary({
     id: 4, kind: 'turn', state: 'running', progress: 0.5, leg: 0, waypoints: [],
     remaining_m: null, remaining_rad: Math.PI / 4,
   }), '#4 turn · running · 50 % · 45.0° to turn');
@@ -350,7 +366,7 @@ test('the mission\'s status in one line', () => {
   }), '#5 move · aborted · 10 %');
   assert.equal(missionSummary({
     id: 6, kind: 'goto', state: 'reached', progress: 1, leg: 1, waypoints: [[1, 0], [1, 1]],
-    remaining_m: null, remaining_rad: null, corrections: 1,
+    remaining_m: null, remaining_rad: null, corrections: 1, settle_s: 4.5,
   }), '#6 goto · reached · leg 2 of 2 · 100 % · 1 correction');
 });
 

@@ -104,6 +104,12 @@ double max_yaw_rate_radps(const Params& params) {
 }
 
 std::optional<RequestError> check_request(const MissionRequest& r) {
+  if (r.settle_s && !(std::isfinite(*r.settle_s) && *r.settle_s > 0.0 &&
+                      *r.settle_s <= kMaxSettleS)) {
+    return bad("settle_s", (std::isfinite(*r.settle_s) ? text(*r.settle_s) + " s is out of range"
+                                                       : std::string("must be a finite number")) +
+                               "; allowed 0 < settle_s ≤ " + text(kMaxSettleS) + " s");
+  }
   switch (r.kind) {
     case MissionKind::kTurn:
       return check_finite_within("angle_rad", r.angle_rad, kMaxTurnRad, "rad");
@@ -184,6 +190,9 @@ void MissionRunner::start(const MissionRequest& request, const estimation::Pose&
   status_.state = MissionState::kRunning;
   status_.started_s = time_s;
   request_ = request;
+  settle_s_ = request.settle_s.value_or(nav_.settle_s);
+  max_settle_s_ = std::max(settle_s_, nav_.max_settle_s + (settle_s_ - nav_.settle_s));
+  status_.settle_s = settle_s_;
   leg_lengths_m_.clear();
   total_length_m_ = 0.0;
   from_ = {pose.x_m, pose.y_m};
@@ -220,7 +229,7 @@ void MissionRunner::start(const MissionRequest& request, const estimation::Pose&
       break;
   }
   best_error_s_ = time_s;
-  if (stood_s < nav_.settle_s && (phase_ == Phase::kTurn || phase_ == Phase::kDrive)) {
+  if (stood_s < settle_s_ && (phase_ == Phase::kTurn || phase_ == Phase::kDrive)) {
     first_phase_ = phase_;
     phase_ = Phase::kStand;
     settle_started_ = true;
@@ -469,7 +478,7 @@ DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s, 
       return drive_targets(pose);
     }
   }
-  // Settling: zero targets until the rover has stood still for settle_s (or max_settle_s).
+  // Settling: zero targets until the rover has stood still for settle_s_ (or max_settle_s_).
   if (stood_still(pose, time_s, stands)) {
     end_leg(pose, time_s);
     if (running()) update_progress(pose);
@@ -477,8 +486,8 @@ DriveTargets MissionRunner::update(const estimation::Pose& pose, double time_s, 
   return {};
 }
 
-// Zero targets meanwhile: true once the rover has stood still for settle_s since the standing
-// began (settle_started_), or max_settle_s passed.
+// Zero targets meanwhile: true once the rover has stood still for settle_s_ since the standing
+// began (settle_started_), or max_settle_s_ passed.
 bool MissionRunner::stood_still(const estimation::Pose& pose, double time_s, bool stands) {
   const bool still = stands && std::abs(pose.yaw_rate_radps) < nav_.still_yaw_rate_radps;
   if (!settle_started_) {
@@ -491,8 +500,8 @@ bool MissionRunner::stood_still(const estimation::Pose& pose, double time_s, boo
   } else if (!still_since_s_) {
     still_since_s_ = time_s;
   }
-  return (still_since_s_ && time_s - *still_since_s_ >= nav_.settle_s) ||
-         time_s - settle_since_s_ >= nav_.max_settle_s;
+  return (still_since_s_ && time_s - *still_since_s_ >= settle_s_) ||
+         time_s - settle_since_s_ >= max_settle_s_;
 }
 
 }  // namespace marsokhod::navigation

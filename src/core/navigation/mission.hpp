@@ -25,7 +25,8 @@
 // profile says. y_l is the rover's offset to the left of the leg's line, L the look-ahead: the
 // heading aims back at the line L metres ahead (pure pursuit). A turn ends when e reaches 0 (its
 // sign flips), a move when ρ ≤ the position tolerance (or its sign flips); then the targets are
-// zero until the rover has stood still for settle_s (the gyro learns its null meanwhile, (3.4)),
+// zero until the rover has stood still for settle_s (the gyro learns its null meanwhile, (3.4);
+// a mission may ask for its own, MissionRequest::settle_s),
 // and a leg that ended more than twice its tolerance off (the heading tolerance for a turn) is
 // driven again (at most max_corrections times). A turn runs to its heading, not to the
 // tolerance's near edge: on soft soil a stopped rover turns back as the wheels' soil unloads, and
@@ -65,6 +66,8 @@ inline constexpr double kMaxTurnRad = 12.566370614359172;
 inline constexpr double kMaxMoveM = 100.0;
 inline constexpr std::size_t kMaxWaypoints = 64;
 inline constexpr double kMaxWaypointM = 1000.0;
+// A mission's own standing time (MissionRequest::settle_s): 0 < settle_s ≤ 60 s.
+inline constexpr double kMaxSettleS = 60.0;
 
 // turn, move or goto, as the operator asks for it.
 struct MissionRequest {
@@ -72,6 +75,10 @@ struct MissionRequest {
   double angle_rad = 0.0;            // turn: + counter-clockwise
   double distance_m = 0.0;           // move: + forward
   std::vector<Waypoint> waypoints;   // goto
+  // Any kind: stand this long before the first leg and after each (the gyro measures its null
+  // meanwhile) instead of navigation.settle_s; the standing's limit, navigation.max_settle_s,
+  // grows by as much. Longer standings measure the null better: a heading for mission time.
+  std::optional<double> settle_s;
   bool operator==(const MissionRequest&) const = default;
 };
 
@@ -115,6 +122,7 @@ struct MissionStatus {
   std::optional<double> remaining_m;
   std::optional<double> remaining_rad;
   int corrections = 0;             // legs driven again after they ended off
+  double settle_s = 0.0;           // the standing after each leg (0 before any mission)
   double started_s = 0.0;
   std::optional<double> ended_s;
   bool operator==(const MissionStatus&) const = default;
@@ -165,6 +173,8 @@ class MissionRunner {
 
   const Params* params_;
   NavigationParams nav_;
+  double settle_s_ = 0.0;      // this mission's standing: its settle_s or navigation.settle_s
+  double max_settle_s_ = 0.0;  // navigation.max_settle_s, longer by as much
   MissionStatus status_;
   MissionRequest request_;
   Phase phase_ = Phase::kSettle;

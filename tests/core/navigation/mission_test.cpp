@@ -91,16 +91,16 @@ TEST(VelocityTargets, CmdVelMapsOntoM1AndM2WithTheGeometry) {
 }
 
 TEST(MissionRequest, BadRequestsNameTheirField) {
-  MissionRequest turn{MissionKind::kTurn, 20.0, 0.0, {}};
+  MissionRequest turn{MissionKind::kTurn, 20.0, 0.0, {}, {}};
   ASSERT_TRUE(check_request(turn));
   EXPECT_EQ(check_request(turn)->field, "angle_rad");
-  MissionRequest move{MissionKind::kMove, 0.0, std::nan(""), {}};
+  MissionRequest move{MissionKind::kMove, 0.0, std::nan(""), {}, {}};
   EXPECT_EQ(check_request(move)->field, "distance_m");
-  MissionRequest empty{MissionKind::kGoto, 0.0, 0.0, {}};
+  MissionRequest empty{MissionKind::kGoto, 0.0, 0.0, {}, {}};
   EXPECT_EQ(check_request(empty)->field, "waypoints");
-  MissionRequest far{MissionKind::kGoto, 0.0, 0.0, {{1.0, 2.0}, {1e4, 0.0}}};
+  MissionRequest far{MissionKind::kGoto, 0.0, 0.0, {{1.0, 2.0}, {1e4, 0.0}}, {}};
   EXPECT_EQ(check_request(far)->field, "waypoints[1].x_m");
-  MissionRequest ok{MissionKind::kGoto, 0.0, 0.0, {{1.0, 2.0}}};
+  MissionRequest ok{MissionKind::kGoto, 0.0, 0.0, {{1.0, 2.0}}, {}};
   EXPECT_FALSE(check_request(ok));
   MissionRunner runner{Params{}};
   EXPECT_THROW(runner.start(far, {}, 0.0, kStood), std::invalid_argument);
@@ -113,7 +113,7 @@ TEST(MissionRunner, TurnReachesItsHeadingWithinTheTolerance) {
     for (const double angle : {kPi / 2, -kPi / 4, 2 * kPi}) {
       MissionRunner runner(params);
       Plant plant{params, efficiency};
-      runner.start({MissionKind::kTurn, angle, 0.0, {}}, plant.pose, 0.0, kStood);
+      runner.start({MissionKind::kTurn, angle, 0.0, {}, {}}, plant.pose, 0.0, kStood);
       run(runner, plant, 120.0);
       EXPECT_EQ(runner.status().state, MissionState::kReached) << efficiency << " " << angle;
       // The loop stops at the heading, plus what the ramp carries it on, at most
@@ -139,7 +139,7 @@ TEST(MissionRunner, TurnRunsToItsHeadingSoThatTheSoilsReboundStaysWithinTheToler
     for (const double angle : {kPi / 2, -kPi / 2}) {
       MissionRunner runner(params);
       SoftPlant plant{params, efficiency, 1.5 * tolerance};
-      runner.start({MissionKind::kTurn, angle, 0.0, {}}, plant.pose, 0.0, kStood);
+      runner.start({MissionKind::kTurn, angle, 0.0, {}, {}}, plant.pose, 0.0, kStood);
       run(runner, plant, 120.0);
       EXPECT_EQ(runner.status().state, MissionState::kReached) << efficiency << " " << angle;
       EXPECT_EQ(runner.status().corrections, 0) << efficiency << " " << angle;
@@ -161,7 +161,7 @@ TEST(MissionRunner, StandingIsTheDriversJudgementNotThePosesNoisySpeed) {
   for (const bool wheels_turn_until_1s : {false, true}) {
     MissionRunner runner(params);
     estimation::Pose pose;
-    runner.start({MissionKind::kMove, 0.0, 1.0, {}}, pose, 0.0, 0.0);
+    runner.start({MissionKind::kMove, 0.0, 1.0, {}, {}}, pose, 0.0, 0.0);
     double t = 0.0, first_drive_s = -1.0;
     for (int k = 1; first_drive_s < 0.0 && t < 10.0; ++k) {
       t = k * kH;
@@ -180,7 +180,7 @@ TEST(MissionRunner, MoveDrivesItsDistanceAlongTheStartHeading) {
     MissionRunner runner(params);
     Plant plant{params};
     plant.pose.heading_rad = 0.3;
-    runner.start({MissionKind::kMove, 0.0, d, {}}, plant.pose, 0.0, kStood);
+    runner.start({MissionKind::kMove, 0.0, d, {}, {}}, plant.pose, 0.0, kStood);
     ASSERT_EQ(runner.status().waypoints.size(), 1U);
     EXPECT_NEAR(runner.status().waypoints[0].x_m, d * std::cos(0.3), 1e-12);
     const double took = run(runner, plant, 60.0);
@@ -203,7 +203,7 @@ TEST(MissionRunner, AMissionFirstStandsUntilTheRoverHasStoodSettleS) {
   for (const double stood : {0.0, settle - 0.5, settle}) {
     MissionRunner runner(params);
     Plant plant{params};
-    runner.start({MissionKind::kMove, 0.0, 1.0, {}}, plant.pose, 0.0, stood);
+    runner.start({MissionKind::kMove, 0.0, 1.0, {}, {}}, plant.pose, 0.0, stood);
     double t = 0.0, first_drive_s = -1.0;
     while (runner.running() && t < 60.0) {
       t += kH;
@@ -216,16 +216,62 @@ TEST(MissionRunner, AMissionFirstStandsUntilTheRoverHasStoodSettleS) {
     EXPECT_NEAR(first_drive_s, std::max(settle - stood, 0.0) + kH, kH + 1e-9) << stood;
   }
   MissionRunner runner(params);
-  EXPECT_THROW(runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 0.0, -1.0),
+  EXPECT_THROW(runner.start({MissionKind::kMove, 0.0, 1.0, {}, {}}, {}, 0.0, -1.0),
                std::invalid_argument);
   EXPECT_FALSE(runner.running());
+}
+
+// A mission's own standing (settle_s): before its first leg and after each, in place of
+// navigation.settle_s; the standing's limit grows by as much (4.5 s → 9 s: max 6 s → 10.5 s).
+TEST(MissionRunner, AMissionsOwnSettleSIsHowLongItStands) {
+  const Params params;
+  const double own = 9.0;
+  const double max_own = params.navigation.max_settle_s + own - params.navigation.settle_s;
+  ASSERT_GT(own, params.navigation.max_settle_s);  // else the test could not tell them apart
+  MissionRunner runner(params);
+  Plant plant{params};
+  MissionRequest request{MissionKind::kMove, 0.0, 1.0, {}, own};
+  runner.start(request, plant.pose, 0.0, 2.0);
+  EXPECT_EQ(runner.status().settle_s, own);
+  double t = 0.0, first_drive_s = -1.0, stopped_s = -1.0;
+  while (runner.running() && t < 60.0) {
+    t += kH;
+    const DriveTargets targets = runner.update(plant.pose, t, plant.stands());
+    if (first_drive_s < 0.0 && targets.v1_radps != 0.0) first_drive_s = t;
+    plant.step(targets);
+    if (first_drive_s > 0.0 && stopped_s < 0.0 && plant.stands()) stopped_s = t;
+  }
+  ASSERT_EQ(runner.status().state, MissionState::kReached);
+  // It drives once the 2 s stood before and the mission's standing make 9 s (a cycle after),
+  EXPECT_NEAR(first_drive_s, own - 2.0 + kH, kH + 1e-9);
+  // and ends 9 s after the wheels stop (the first cycle they stand counts as the first still).
+  EXPECT_NEAR(runner.status().ended_s.value(), stopped_s + own, 2 * kH + 1e-9);
+  // Never standing still (the wheels turn), the limit ends the standing: max_settle_s + 4.5 s.
+  MissionRunner restless(params);
+  restless.start(request, {}, 0.0, 0.0);
+  double first = -1.0;
+  for (int k = 1; first < 0.0 && k * kH < 30.0; ++k) {
+    if (restless.update({}, k * kH, false).v1_radps != 0.0) first = k * kH;
+  }
+  EXPECT_NEAR(first, max_own + kH, kH + 1e-9);
+  // Out of range or not finite: refused, naming the field; nothing starts.
+  for (const double bad : {0.0, -1.0, kMaxSettleS + 0.1, std::nan("")}) {
+    request.settle_s = bad;
+    ASSERT_TRUE(check_request(request)) << bad;
+    EXPECT_EQ(check_request(request)->field, "settle_s") << bad;
+    MissionRunner refused(params);
+    EXPECT_THROW(refused.start(request, {}, 0.0, kStood), std::invalid_argument);
+    EXPECT_FALSE(refused.running());
+  }
+  request.settle_s = kMaxSettleS;
+  EXPECT_FALSE(check_request(request));
 }
 
 TEST(MissionRunner, MoveHoldsItsLineAgainstADisturbance) {
   const Params params;
   MissionRunner runner(params);
   Plant plant{params};
-  runner.start({MissionKind::kMove, 0.0, 3.0, {}}, plant.pose, 0.0, kStood);
+  runner.start({MissionKind::kMove, 0.0, 3.0, {}, {}}, plant.pose, 0.0, kStood);
   double t = 0.0;
   while (runner.running() && t < 60.0) {
     t += kH;
@@ -243,7 +289,7 @@ TEST(MissionRunner, GotoVisitsEveryWaypointInTurn) {
   MissionRunner runner(params);
   Plant plant{params};
   const std::vector<Waypoint> square{{2.0, 0.0}, {2.0, 2.0}, {0.0, 2.0}, {0.0, 0.0}};
-  runner.start({MissionKind::kGoto, 0.0, 0.0, square}, plant.pose, 0.0, kStood);
+  runner.start({MissionKind::kGoto, 0.0, 0.0, square, {}}, plant.pose, 0.0, kStood);
   EXPECT_DOUBLE_EQ(runner.status().progress, 0.0);
   std::size_t leg = 0;
   double t = 0.0, closest_to_corner = 1e9;
@@ -267,7 +313,7 @@ TEST(MissionRunner, NoProgressAbortsWithTheReason) {
   const Params params;
   MissionRunner runner(params);
   estimation::Pose stuck;  // a rover that never moves
-  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, stuck, 0.0, kStood);
+  runner.start({MissionKind::kMove, 0.0, 1.0, {}, {}}, stuck, 0.0, kStood);
   double t = 0.0;
   DriveTargets last;
   while (runner.running() && t < 30.0) {
@@ -284,9 +330,9 @@ TEST(MissionRunner, NoProgressAbortsWithTheReason) {
 TEST(MissionRunner, AbortAndReplaceEndTheRunningMission) {
   const Params params;
   MissionRunner runner(params);
-  runner.start({MissionKind::kTurn, 1.0, 0.0, {}}, {}, 0.0, kStood);
+  runner.start({MissionKind::kTurn, 1.0, 0.0, {}, {}}, {}, 0.0, kStood);
   EXPECT_EQ(runner.status().id, 1U);
-  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 1.0, kStood);
+  runner.start({MissionKind::kMove, 0.0, 1.0, {}, {}}, {}, 1.0, kStood);
   EXPECT_EQ(runner.status().id, 2U);
   EXPECT_EQ(runner.status().kind, MissionKind::kMove);
   runner.abort("the operator took over", 2.0);
@@ -303,7 +349,7 @@ TEST(MissionRunner, AbortAndReplaceEndTheRunningMission) {
 
 TEST(MissionRunner, NonFinitePoseIsRejected) {
   MissionRunner runner{Params{}};
-  runner.start({MissionKind::kMove, 0.0, 1.0, {}}, {}, 0.0, kStood);
+  runner.start({MissionKind::kMove, 0.0, 1.0, {}, {}}, {}, 0.0, kStood);
   estimation::Pose bad;
   bad.x_m = std::nan("");
   EXPECT_THROW(runner.update(bad, 0.1, true), std::invalid_argument);
