@@ -65,6 +65,17 @@ void print_summary(const runner::SoakResult& r, std::ostream& out) {
                 static_cast<unsigned long long>(r.spurious_silent_faults));
   out << line;
   std::snprintf(line, sizeof line,
+                "missions: %llu sent (%llu heartbeats after them), %llu reached, %llu aborted; "
+                "cmd_vel: %llu streams\n",
+                static_cast<unsigned long long>(
+                    o.activities[static_cast<std::size_t>(runner::Activity::kMission)]),
+                static_cast<unsigned long long>(o.heartbeats),
+                static_cast<unsigned long long>(r.missions_reached),
+                static_cast<unsigned long long>(r.missions_aborted),
+                static_cast<unsigned long long>(
+                    o.activities[static_cast<std::size_t>(runner::Activity::kVelocity)]));
+  out << line;
+  std::snprintf(line, sizeof line,
                 "invariants checked: %llu over %llu cycles; joints at most %.4f rad outside "
                 "(5.3)\n",
                 static_cast<unsigned long long>(r.evaluations),

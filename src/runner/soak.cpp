@@ -35,6 +35,8 @@ void add_segment_stats(const SegmentPlan& plan, const SegmentRunner& run, Sessio
   r.evaluations += run.checker().evaluations();
   r.driver_restarts += session.driver_restarts();
   r.spurious_silent_faults += run.spurious_silent_faults();
+  r.missions_reached += run.missions_reached();
+  r.missions_aborted += run.missions_aborted();
   if (const auto& at = run.checker().max_joint_excess_at();
       at && run.checker().max_joint_excess_rad() > r.max_joint_excess_rad) {
     r.max_joint_excess_at = SoakViolation{*at, plan.index, plan.sand,
@@ -57,6 +59,7 @@ void add_segment_stats(const SegmentPlan& plan, const SegmentRunner& run, Sessio
   t.long_silences += s.long_silences;
   t.hand_overs += s.hand_overs;
   t.fault_clears += s.fault_clears;
+  t.heartbeats += s.heartbeats;
 }
 
 // A violation (or the worst joint excess) in the summary: where in the soak, and what.
@@ -178,7 +181,9 @@ nlohmann::ordered_json to_json(const SoakResult& r) {
   const OperatorStats& o = r.operator_stats;
   j["operator"] = {{"commands", o.commands},       {"short_silences", o.short_silences},
                    {"long_silences", o.long_silences}, {"hand_overs", o.hand_overs},
-                   {"fault_clears", o.fault_clears}};
+                   {"fault_clears", o.fault_clears}, {"heartbeats", o.heartbeats},
+                   {"missions_reached", r.missions_reached},
+                   {"missions_aborted", r.missions_aborted}};
   for (std::size_t a = 0; a < kActivityCount; ++a) {
     j["operator"]["activities"][activity_name(static_cast<Activity>(a))] = o.activities[a];
   }

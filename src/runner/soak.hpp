@@ -66,6 +66,8 @@ struct SoakResult {
   OperatorStats operator_stats;
   std::uint64_t driver_restarts = 0;
   std::uint64_t spurious_silent_faults = 0;
+  std::uint64_t missions_reached = 0;  // the operator's turn/move/goto missions, as they ended
+  std::uint64_t missions_aborted = 0;
   double max_joint_excess_rad = 0.0;  // the farthest a joint went outside (5.3), as judged
   std::optional<SoakViolation> max_joint_excess_at;  // where (when above 0): its cycle and detail
   double max_unknown_joint_excess_rad = 0.0;  // the truth of joints the driver could not know

@@ -95,7 +95,7 @@ struct CycleView {
   const driver::DriverStatus* status = nullptr;  // required while the driver runs
   std::span<const protocol::CanFrame> received;  // delivered to the driver before its step
   std::span<const protocol::CanFrame> sent;      // its requests
-  bool operator_command = false;  // a gamepad reading, targets or a stop arrived this cycle
+  bool operator_command = false;  // any input that renews the timeout arrived this cycle
   std::array<double, 2> joint_angle_rad{};      // truth: p6, p7
   MotorVector motor_duty{};                      // truth: what µ0–µ7 apply now
   double supply_v = 24.0;                        // truth (for the report only)

@@ -9,7 +9,11 @@ namespace {
 constexpr double kDroppedMessage = 0.2;  // a console message lost or late: ~51 of 64 per second
 
 // How often each activity is chosen, in Activity's order.
-constexpr std::array<double, kActivityCount> kWeights{3, 2, 1, 2, 2, 1, 3, 1, 1, 2};
+constexpr std::array<double, kActivityCount> kWeights{3, 2, 1, 2, 2, 1, 3, 1, 1, 2, 1, 2};
+
+// A mission's size: turns up to half a turn, moves and goto's legs up to 1.5 m each way.
+constexpr double kMissionTurnRad = 3.14;
+constexpr double kMissionReachM = 1.5;
 
 constexpr std::array<mobility::Gait, 5> kGaits{
     mobility::Gait::kRolking, mobility::Gait::kFrontWheelWalking,
@@ -50,6 +54,8 @@ const char* activity_name(Activity activity) {
     case Activity::kStop: return "stop";
     case Activity::kHandOver: return "hand-over";
     case Activity::kSilence: return "silence";
+    case Activity::kVelocity: return "velocity";
+    case Activity::kMission: return "mission";
   }
   return "?";
 }
@@ -57,7 +63,35 @@ const char* activity_name(Activity activity) {
 OperatorScript::OperatorScript(std::uint64_t seed, const Params& params)
     : params_(&params), random_(seed) {}
 
-void OperatorScript::start_activity(std::int64_t time_us) {
+// A turn, a move or a goto of 1–3 waypoints around the pose the driver reports; a third of them
+// with their own standing (1–10 s).
+navigation::MissionRequest OperatorScript::random_mission(const driver::DriverStatus& status) {
+  navigation::MissionRequest m;
+  const std::size_t kind = random_.below(3);
+  // Never exactly 0: a turn or move of nothing is still a mission, but a useless one.
+  const double sign = random_.chance(0.5) ? 1.0 : -1.0;
+  if (kind == 0) {
+    m.kind = navigation::MissionKind::kTurn;
+    m.angle_rad = sign * random_.uniform(0.1, kMissionTurnRad);
+  } else if (kind == 1) {
+    m.kind = navigation::MissionKind::kMove;
+    m.distance_m = sign * random_.uniform(0.1, kMissionReachM);
+  } else {
+    m.kind = navigation::MissionKind::kGoto;
+    double x = status.pose.x_m, y = status.pose.y_m;
+    const std::size_t count = 1 + random_.below(3);
+    const double limit = 0.9 * navigation::kMaxWaypointM;  // the pose wanders over hours
+    for (std::size_t i = 0; i < count; ++i) {
+      x = std::clamp(x + random_.uniform(-kMissionReachM, kMissionReachM), -limit, limit);
+      y = std::clamp(y + random_.uniform(-kMissionReachM, kMissionReachM), -limit, limit);
+      m.waypoints.push_back({x, y});
+    }
+  }
+  if (random_.chance(1.0 / 3.0)) m.settle_s = random_.uniform(1.0, 10.0);
+  return m;
+}
+
+void OperatorScript::start_activity(std::int64_t time_us, const driver::DriverStatus& status) {
   if (activity_ == Activity::kHandOver) use_gamepad_ = !use_gamepad_;  // the new console drives
   double total = 0.0;
   for (double w : kWeights) total += w;
@@ -104,6 +138,15 @@ void OperatorScript::start_activity(std::int64_t time_us) {
       ++stats_.hand_overs;
       seconds = random_.uniform(0.2, 1.5);  // until the other console's first message
       break;
+    case Activity::kVelocity:
+      // Inside the limits check_velocity holds them to (the largest |v| and |ω| included).
+      velocity_ = {fraction() * navigation::max_velocity_mps(*params_),
+                   fraction() * navigation::max_yaw_rate_radps(*params_)};
+      break;
+    case Activity::kMission:
+      mission_ = random_mission(status);
+      seconds = random_.uniform(10.0, 60.0);  // often ended early by what the operator does next
+      break;
     case Activity::kSilence: {
       const double timeout_s = params_->safety.operator_timeout_s;
       const bool long_one = random_.chance(0.5);
@@ -142,7 +185,17 @@ driver::OperatorInput OperatorScript::gamepad_command(bool first_cycle) const {
 
 driver::OperatorInput OperatorScript::command(bool first_cycle) {
   driver::OperatorInput input;
-  if (use_gamepad_) {
+  if (activity_ == Activity::kVelocity) {
+    input.velocity = velocity_;  // either console: the stick's velocity mode or the form's
+  } else if (activity_ == Activity::kMission) {
+    // The mission once, then what the console sends while it runs and the pad rests.
+    if (first_cycle) {
+      input.mission = mission_;
+    } else {
+      input.heartbeat = true;
+      ++stats_.heartbeats;
+    }
+  } else if (use_gamepad_) {
     input = gamepad_command(first_cycle);
   } else {
     input.targets = targets_;
@@ -152,7 +205,7 @@ driver::OperatorInput OperatorScript::command(bool first_cycle) {
 
 const driver::OperatorInput* OperatorScript::next(std::int64_t time_us,
                                                   const driver::DriverStatus& status) {
-  if (time_us >= activity_end_us_) start_activity(time_us);
+  if (time_us >= activity_end_us_) start_activity(time_us, status);
   const bool first_cycle = time_us == activity_start_us_;
   if (!status.faults.empty() && !clear_at_us_) {
     clear_at_us_ = time_us + std::llround(random_.uniform(0.5, 3.0) * 1e6);

@@ -77,7 +77,8 @@ std::vector<Violation> SegmentRunner::step(Recorder* recorder, bool first) {
   view.received = received_;
   view.sent = cycle.sent;
   view.operator_command = cycle.driver_running && input != nullptr &&
-                          (input->gamepad || input->targets || input->stop);
+                          (input->gamepad || input->targets || input->velocity ||
+                           input->mission || input->heartbeat || input->stop);
   const sim::GroundTruth truth = rover.truth();
   view.joint_angle_rad = {truth.joint_angle_rad[kFrontJoint], truth.joint_angle_rad[kRearJoint]};
   view.motor_duty = rover.firmware().duty();
@@ -85,8 +86,26 @@ std::vector<Violation> SegmentRunner::step(Recorder* recorder, bool first) {
   const sim::SimFaults& f = rover.faults();
   view.joint_encoder_fault = {f.lost_pulse_fraction[kFrontJoint] > 0.0,
                               f.lost_pulse_fraction[kRearJoint] > 0.0};
-  if (cycle.driver_running) count_spurious_faults(cycle.time_us, session_.status(), f);
+  if (cycle.driver_running) {
+    count_spurious_faults(cycle.time_us, session_.status(), f);
+    count_mission_end(session_.status());
+  } else {
+    ended_mission_id_ = 0;  // a restarted driver counts its missions from 1 again
+  }
   return checker_.check(view);
+}
+
+void SegmentRunner::count_mission_end(const driver::DriverStatus& status) {
+  const navigation::MissionStatus& m = status.mission;
+  if (m.id <= ended_mission_id_ || m.kind == navigation::MissionKind::kVelocity) return;
+  if (m.state == navigation::MissionState::kReached) {
+    ++missions_reached_;
+  } else if (m.state == navigation::MissionState::kAborted) {
+    ++missions_aborted_;
+  } else {
+    return;
+  }
+  ended_mission_id_ = m.id;
 }
 
 void SegmentRunner::count_spurious_faults(std::int64_t time_us,

@@ -51,10 +51,14 @@ class SegmentRunner {
   const InvariantChecker& checker() const { return checker_; }
   // "µN silent" faults latched while µN was answering in the simulator (lost frames alone).
   std::uint64_t spurious_silent_faults() const { return spurious_silent_; }
+  // The operator's turn, move and goto missions as the driver ended them (status.mission).
+  std::uint64_t missions_reached() const { return missions_reached_; }
+  std::uint64_t missions_aborted() const { return missions_aborted_; }
 
  private:
   void count_spurious_faults(std::int64_t time_us, const driver::DriverStatus& status,
                              const sim::SimFaults& faults);
+  void count_mission_end(const driver::DriverStatus& status);
 
   SegmentPlan plan_;
   Session session_;
@@ -66,6 +70,9 @@ class SegmentRunner {
   std::vector<std::string> faults_before_;
   std::array<std::optional<std::int64_t>, kMotorCount + 1> silenced_us_{};  // last made silent
   std::uint64_t spurious_silent_ = 0;
+  std::uint64_t ended_mission_id_ = 0;  // the driver's id of the last mission counted (per driver)
+  std::uint64_t missions_reached_ = 0;
+  std::uint64_t missions_aborted_ = 0;
 };
 
 }  // namespace marsokhod::runner

@@ -5,12 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "core/navigation/mission.hpp"
 #include "runner/replay.hpp"
 #include "runner/soak_segment.hpp"
 #include "runner_test_support.hpp"
@@ -73,8 +75,52 @@ std::pair<std::size_t, OperatorStats> script_run(std::uint64_t seed, double minu
       if (gamepad_inputs != nullptr) ++*gamepad_inputs;
       for (double a : in->gamepad->axes) mix(a);
     }
+    if (in->velocity) mix(in->velocity->v_mps + 3 * in->velocity->yaw_radps);
+    if (in->mission) {
+      mix(static_cast<double>(in->mission->kind) + in->mission->angle_rad +
+          in->mission->distance_m + in->mission->settle_s.value_or(-1.0));
+      for (const navigation::Waypoint& w : in->mission->waypoints) mix(w.x_m + 3 * w.y_m);
+    }
+    mix(in->heartbeat ? 7.0 : 0.0);
   }
   return {hash, script.stats()};
+}
+
+// The missions and velocities the soak's operator sends are ones the driver takes: inside the
+// limits check_request and check_velocity hold them to, a third of the missions with their own
+// standing, every kind; a mission is followed by heartbeats.
+TEST(SoakOperator, SendsMissionsAndVelocitiesTheDriverTakes) {
+  const Params params = shipped_params();
+  OperatorScript script(3, params);
+  driver::DriverStatus status;
+  status.pose.x_m = 950.0;  // far out: the waypoints stay inside the 1000 m the driver allows
+  std::array<int, 3> kinds{};
+  int missions = 0, own_standing = 0, velocities = 0;
+  bool heartbeat_after_mission = false, mission_seen = false;
+  for (std::int64_t t = 0; t < static_cast<std::int64_t>(60 * 60e6); t += kCycleUs) {
+    const driver::OperatorInput* in = script.next(t, status);
+    if (in == nullptr) continue;
+    if (in->velocity) {
+      ++velocities;
+      EXPECT_FALSE(navigation::check_velocity(*in->velocity, params).has_value());
+    }
+    if (in->mission) {
+      ++missions;
+      mission_seen = true;
+      EXPECT_FALSE(navigation::check_request(*in->mission).has_value())
+          << navigation::check_request(*in->mission)->message;
+      ++kinds[static_cast<std::size_t>(in->mission->kind) - 2];  // turn, move, goto
+      if (in->mission->settle_s) ++own_standing;
+    }
+    if (in->heartbeat && mission_seen) heartbeat_after_mission = true;
+  }
+  EXPECT_GT(missions, 20);
+  for (int k : kinds) EXPECT_GT(k, 0);
+  EXPECT_GT(own_standing, 0);
+  EXPECT_LT(own_standing, missions);
+  EXPECT_GT(velocities, 0);
+  EXPECT_TRUE(heartbeat_after_mission);
+  EXPECT_GT(script.stats().heartbeats, 0u);
 }
 
 TEST(SoakOperator, DoesEverythingAnOperatorDoesAndTheSameForTheSameSeed) {
