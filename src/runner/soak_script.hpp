@@ -3,9 +3,9 @@
 // forward and back, drive by cmd_vel (velocity), send missions (turn, move, goto, some with
 // their own standing) and keep them alive with heartbeats, stop, hand control over to another
 // console, fall silent — from a console that sends targets or from a gamepad, at 64 Hz with
-// dropped messages. Deterministic: the same
-// seed and the same driver statuses give the same inputs (no wall clock, and a portable mapping
-// of std::mt19937_64's bits to numbers, not the library's distributions).
+// dropped messages. Deterministic: the same seed and the same driver statuses give the same
+// inputs (no wall clock, and a portable mapping of std::mt19937_64's bits to numbers, not the
+// library's distributions).
 #pragma once
 
 #include <array>

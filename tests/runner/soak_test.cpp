@@ -93,7 +93,10 @@ TEST(SoakOperator, SendsMissionsAndVelocitiesTheDriverTakes) {
   const Params params = shipped_params();
   OperatorScript script(3, params);
   driver::DriverStatus status;
-  status.pose.x_m = 950.0;  // far out: the waypoints stay inside the 1000 m the driver allows
+  // At the edge of the 1000 m the driver allows: the script's goto, up to 3 × 1.5 m further out
+  // unclamped, must keep its waypoints inside.
+  status.pose.x_m = 999.5;
+  status.pose.y_m = -999.5;
   std::array<int, 3> kinds{};
   int missions = 0, own_standing = 0, velocities = 0;
   bool heartbeat_after_mission = false, mission_seen = false;

@@ -354,7 +354,7 @@ export interface MissionStatus {
   remaining_rad: StatusNumber;
   /** Legs driven again after ending off their target. */
   corrections?: number;
-  /** The mission's standing after each leg [s] (0 before any mission). */
+  /** The mission's standing after each leg [s] (0 before any mission and for velocity). */
   settle_s?: number;
 }
 
