@@ -57,7 +57,10 @@ uint8_t can_take(can_frame_t *frame) {
 
 void can_send(uint8_t mob, uint8_t idt, uint8_t dlc, const uint8_t *data) {
   uint8_t i;
-  while (CANEN2 & (1 << mob)) { /* the previous frame of this MOb is still pending */
+  /* the previous frame of this MOb is still pending (CANEN2: MObs 0..7, CANEN1: 8..14) */
+  volatile uint8_t *const enabled = mob < 8 ? &CANEN2 : &CANEN1;
+  const uint8_t bit = (uint8_t)(1 << (mob & 7));
+  while (*enabled & bit) {
   }
   select_mob(mob);
   CANSTMOB = 0;

@@ -11,8 +11,10 @@
  * front (j = 0) first.
  * 0x82 → 0x83: sets dog (0 disables); arming a disabled switch restarts its timer.
  * Dead man's switch: Timer 1 at 16 MHz/64 overflows every 65536·64/16 MHz = 0.262144 s, counted
- * from the 0x80's arrival (its CAN time stamp); after dog overflows without a 0x80 µ8 sends 0xi0 with drv = 0, eim = 1, pwm = 0 to µ0–µ7 (MObs 2..9), once
- * per silence.
+ * from the 0x80's arrival (its CAN time stamp); after dog overflows without a 0x80 µ8 sends 0xi0
+ * with drv = 0, eim = 1, pwm = 0 to µ0–µ7 (MObs 2..9), and again at every overflow while the
+ * silence lasts: a stop frame the bus lost reaches its motor one overflow later. A MOb whose last
+ * stop frame is still waiting for the bus is skipped, so the interrupt never waits on the bus.
  * LCD: the eight characters and the supply voltage U = 0.06768·vcc − 41.0823 V (Procedure 3.5),
  * or, after a second without 0x80, the idle text scrolling. Frames µ8 cannot use are ignored. */
 #include <avr/interrupt.h>
@@ -36,8 +38,7 @@ static volatile uint16_t readings[ADC_CHANNELS];
 static uint8_t channel;
 static uint8_t tilt_channel; /* j of the next response */
 static uint8_t dog;
-static uint8_t overflows_since_request;
-static uint8_t dead_man_fired;
+static uint8_t overflows_since_request; /* saturates at 255 */
 static volatile uint8_t idle_overflows = IDLE_AFTER_OVERFLOWS;
 static volatile uint8_t display_dirty = 1;
 /* The watchdog's food: set every 1024 conversions (107 ms) by the ADC interrupt, which runs
@@ -69,15 +70,18 @@ static void restart_dead_man(uint16_t stamp) {
   TCNT1 = elapsed / 8;
   TIFR1 = (1 << TOV1);
   overflows_since_request = 0;
-  dead_man_fired = 0;
 }
 
 static void stop_motors(void) {
   uint8_t node;
   const uint8_t stop[MK_DLC_CONTROL_REQUEST] = {MK_EIM_BIT, 0, 0};
-  for (node = 0; node < MK_MOTOR_CONTROLLER_COUNT; ++node) {
-    can_send((uint8_t)(STOP_FIRST_MOB + node), (uint8_t)(node << 4 | MK_TYPE_CONTROL_REQUEST),
-             MK_DLC_CONTROL_REQUEST, stop);
+  /* MObs 2..9 busy: CANEN2 holds MObs 0..7, CANEN1 MObs 8..14 (one read, no shifts per MOb) */
+  uint16_t busy = (uint16_t)(((uint16_t)CANEN1 << 8 | CANEN2) >> STOP_FIRST_MOB);
+  for (node = 0; node < MK_MOTOR_CONTROLLER_COUNT; ++node, busy >>= 1) {
+    if (!(busy & 1)) {
+      can_send((uint8_t)(STOP_FIRST_MOB + node), (uint8_t)(node << 4 | MK_TYPE_CONTROL_REQUEST),
+               MK_DLC_CONTROL_REQUEST, stop);
+    }
   }
 }
 
@@ -86,9 +90,9 @@ ISR(TIMER1_OVF_vect) {
     ++idle_overflows;
     display_dirty = 1;
   }
-  if (dog != 0 && !dead_man_fired && ++overflows_since_request >= dog) {
-    stop_motors();
-    dead_man_fired = 1;
+  if (dog != 0) {
+    if (overflows_since_request < 255) ++overflows_since_request;
+    if (overflows_since_request >= dog) stop_motors();
   }
 }
 

@@ -154,6 +154,7 @@ std::vector<Violation> InvariantChecker::check(const CycleView& c) {
   previous_running_ = true;
   ever_ran_ = true;
   last_running_us_ = c.time_us;
+  stop_frames_lost_then_ = c.stop_frames_lost;
   return out;
 }
 
@@ -331,10 +332,14 @@ void InvariantChecker::check_driver_down(const CycleView& c, Report& out) {
   if (c.time_us < deadline_us) return;
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     if (c.motor_duty[i] == 0.0) continue;
+    // µ8 sends again one tick later for each stop frame to µi that the bus lost.
+    const std::uint64_t lost = c.stop_frames_lost[i] - stop_frames_lost_then_[i];
+    if (c.time_us < deadline_us + kDeadManTickUs * static_cast<std::int64_t>(lost)) continue;
     add(out, Invariant::kDeadMan, c,
         motor(i) + format(" still at d = %.4f %.3f s after the driver's last request",
                           c.motor_duty[i],
-                          static_cast<double>(c.time_us - *last_running_us_) * 1e-6));
+                          static_cast<double>(c.time_us - *last_running_us_) * 1e-6) +
+            (lost > 0 ? " (" + std::to_string(lost) + " of µ8's stop frames to it lost)" : ""));
     return;
   }
 }

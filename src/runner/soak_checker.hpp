@@ -36,7 +36,10 @@
 //                   hold; off by timeout + 2.1 s, and staying off, can. Not in start-up:
 //                   Procedure 4.3 moves the joints on its own, as docs say
 //   dead-man        the driver down (brown-out): µ0–µ7's duties are 0 from its last requests +
-//                   0.262144·dog s + one cycle on
+//                   0.262144·dog s + one cycle on; µ8 repeats its stop frames every 0.262144 s
+//                   while the silence lasts, so for µi the deadline moves by 0.262144 s for each
+//                   of µ8's frames to µi that the bus lost since (the simulator counts them: the
+//                   check holds µ8 to stopping µi with the first stop frame that arrives)
 //   restart         a driver that comes back starts afresh: start-up mode, cycle 1, only
 //                   configuration requests to µ0–µ7
 //   supply-warning  the supply µ8 reported (its vcc on the bus, by Procedure 3.5's conversion)
@@ -100,6 +103,8 @@ struct CycleView {
   MotorVector motor_duty{};                      // truth: what µ0–µ7 apply now
   double supply_v = 24.0;                        // truth (for the report only)
   std::array<bool, 2> joint_encoder_fault{};     // µ6, µ7 losing pulses this cycle
+  // truth: µ8's frames to µ0–µ7 the bus lost so far (a running count, never reset)
+  std::array<std::uint64_t, kMotorCount> stop_frames_lost{};
 };
 
 class InvariantChecker {
@@ -160,6 +165,7 @@ class InvariantChecker {
   std::uint64_t missed_total_ = 0;              // since the driver started
   std::optional<std::int64_t> last_command_us_;
   std::optional<std::int64_t> last_running_us_;
+  std::array<std::uint64_t, kMotorCount> stop_frames_lost_then_{};  // at last_running_us_
   std::array<bool, 2> encoder_faulted_{};       // since the first driver started
   int low_supply_cycles_ = 0;
 };

@@ -82,6 +82,7 @@ std::vector<Violation> SegmentRunner::step(Recorder* recorder, bool first) {
   const sim::GroundTruth truth = rover.truth();
   view.joint_angle_rad = {truth.joint_angle_rad[kFrontJoint], truth.joint_angle_rad[kRearJoint]};
   view.motor_duty = rover.firmware().duty();
+  view.stop_frames_lost = rover.firmware().stop_frames_lost();
   view.supply_v = rover.electrics().supply_v;
   const sim::SimFaults& f = rover.faults();
   view.joint_encoder_fault = {f.lost_pulse_fraction[kFrontJoint] > 0.0,

@@ -255,6 +255,30 @@ TEST_F(CheckerTest, TheDeadMansSwitchMustStopTheMotorsWhenTheDriverIsDown) {
   EXPECT_TRUE(down_cycle().empty());
 }
 
+// µ8 sends its stop frames again every tick while the driver is silent: each of its frames to µi
+// that the bus lost gives µi one tick more, and no more than that; lost frames before the driver
+// went down do not count.
+TEST_F(CheckerTest, ALostStopFrameGivesItsMotorOneTickMore) {
+  view_.stop_frames_lost = {0, 0, 0, 0, 0, 5};  // lost while the driver ran
+  settle();
+  const std::int64_t last_us = time_us_ - kCycleUs;
+  const std::int64_t dog = shipped_params().safety.dead_man_dog;
+  const std::int64_t deadline_us = last_us + dog * 262144 + kCycleUs;
+  view_.motor_duty = {0.0, 0.0, 0.0, 0.0, 0.0, 0.3};
+  view_.stop_frames_lost[5] = 6;  // the first stop frame to µ5
+  while (time_us_ < deadline_us + 262144) ASSERT_TRUE(down_cycle().empty()) << time_us_;
+  const std::vector<Violation> late = down_cycle();
+  ASSERT_TRUE(has(late, Invariant::kDeadMan));
+  EXPECT_NE(late.front().detail.find("µ5 still at d = 0.3000"), std::string::npos)
+      << late.front().detail;
+  EXPECT_NE(late.front().detail.find("1 of µ8's stop frames to it lost"), std::string::npos)
+      << late.front().detail;
+  view_.stop_frames_lost[5] = 7;  // the repeat was lost too: one more tick
+  EXPECT_TRUE(down_cycle().empty());
+  view_.motor_duty[2] = 0.1;  // µ2's frames all arrived: it is late
+  EXPECT_TRUE(has(down_cycle(), Invariant::kDeadMan));
+}
+
 TEST_F(CheckerTest, ARestartedDriverMustStartUpAfresh) {
   // The joints stand where the restarted driver's estimate puts them (see the next test).
   status_.motors[kFrontJoint].position_rad = -1.5;

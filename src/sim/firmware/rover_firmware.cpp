@@ -148,6 +148,10 @@ std::vector<BusDelivery> RoverFirmware::advance_to(SimTimeNs time_ns,
     const BusDelivery delivery = bus_.pop();
     move_controllers_to(delivery.delivery_ns);
     if (delivery.lost) {
+      const std::uint32_t node = delivery.frame.id >> 7;
+      if (delivery.origin == static_cast<int>(kSensorNode) && node < kMotorCount) {
+        ++stop_frames_lost_[node];
+      }
       continue;
     }
     deliver(delivery);

@@ -11,8 +11,9 @@
 // advance_to() returns every frame delivered on the bus that the driver did not send itself
 // (responses, and µ8's stop frames), in bus order with their times.
 // Faults (run time): a controller that never answers (silent: it still receives and acts, its
-// transmitter is dead; a silent µ8 sends no stop frames either), frame loss on the bus (seeded),
-// a loose encoder connection per motor (motor_controller.hpp).
+// transmitter is dead; a silent µ8 sends no stop frames either), frame loss on the bus (seeded;
+// the stop frames it takes are counted per motor), a loose encoder connection per motor
+// (motor_controller.hpp).
 #pragma once
 
 #include <array>
@@ -63,6 +64,10 @@ class RoverFirmware {
   const MotorController& motor_controller(std::size_t motor) const { return motors_.at(motor); }
   const SensorController& sensor_controller() const { return sensor_; }
   const CanBusModel& bus() const { return bus_; }
+  // µ8's frames to µi (its dead man's stop frames) that the loss fault took, since the start.
+  const std::array<std::uint64_t, kMotorCount>& stop_frames_lost() const {
+    return stop_frames_lost_;
+  }
 
   void set_silent(std::size_t controller, bool silent);
   void set_frame_loss_probability(double probability);
@@ -83,6 +88,7 @@ class RoverFirmware {
   CanBusModel bus_;
   SimTimeNs latency_ns_;
   std::array<bool, kControllerCount> silent_{};
+  std::array<std::uint64_t, kMotorCount> stop_frames_lost_{};
   SimTimeNs time_ns_ = 0;
   MotorVector angle_rad_{};  // at time_ns_
   SimTimeNs target_ns_ = 0;  // the step being run: from time_ns_ to target_ns_

@@ -61,13 +61,13 @@ std::optional<protocol::CanFrame> SensorController::receive(const protocol::CanF
     lcd_ = request->lcd;
     last_request_ns_ = time_ns_;
     dead_man_start_ns_ = time_ns_;
-    dead_man_fired_ = false;
+    dead_man_overflows_ = 0;
     return protocol::encode(measure());
   }
   if (const auto* dead_man = std::get_if<protocol::DeadManRequest>(&decoded.message())) {
     if (dog_ == 0 && dead_man->dog > 0) {
       dead_man_start_ns_ = time_ns_;
-      dead_man_fired_ = false;
+      dead_man_overflows_ = 0;
     }
     dog_ = dead_man->dog;
     return protocol::encode(protocol::DeadManResponse{});
@@ -76,10 +76,10 @@ std::optional<protocol::CanFrame> SensorController::receive(const protocol::CanF
 }
 
 std::optional<SimTimeNs> SensorController::dead_man_deadline_ns() const {
-  if (dog_ == 0 || dead_man_fired_) {
+  if (dog_ == 0) {
     return std::nullopt;
   }
-  return dead_man_start_ns_ + dog_ * kDeadManPeriodNs;
+  return dead_man_start_ns_ + (dog_ + dead_man_overflows_) * kDeadManPeriodNs;
 }
 
 std::array<protocol::CanFrame, 8> SensorController::fire_dead_man() {
@@ -88,8 +88,9 @@ std::array<protocol::CanFrame, 8> SensorController::fire_dead_man() {
     // eim = 1: the driver's own rule for pwm/icr < 0.6 (encoder_interrupt.hpp).
     frames[node] = protocol::encode(protocol::ControlRequest{node, false, true, 0});
   }
-  dead_man_fired_ = true;
-  ++dead_man_stops_;
+  if (dead_man_overflows_ == 0) ++dead_man_stops_;
+  ++dead_man_overflows_;
+  ++dead_man_firings_;
   return frames;
 }
 

@@ -8,8 +8,9 @@
 // driver configuring dog before its first 0x80 is not stopped at once.
 // Dead man's switch: Timer 1 at 16 MHz/64 overflows every 65536·64/16 MHz = 0.262144 s; dog
 // overflows after the last 0x80 (or the arming) µ8 sends pwm = 0 to µ0–µ7 itself: eight control
-// requests 0xi0 with drv = 0, eim = 1, pwm = 0, ready at exactly last + dog·0.262144 s. It fires
-// once per silence; the next 0x80 re-arms it.
+// requests 0xi0 with drv = 0, eim = 1, pwm = 0, ready at exactly last + dog·0.262144 s, and again
+// every 0.262144 s (each overflow) while the silence lasts, so that a stop frame the bus lost
+// reaches its motor one overflow later. The next 0x80 ends the silence.
 // Frames µ8 cannot use (other nodes, responses, codec rejections) are ignored without answer.
 // The LCD shows the 8 characters and the supply voltage; with no 0x80 for a second (the bus
 // inactive) it shows the firmware's idle text, as the photograph of Figure 3.7 describes.
@@ -52,9 +53,9 @@ class SensorController {
   // A frame delivered at the time of the last advance(): the response, if µ8 answers.
   std::optional<protocol::CanFrame> receive(const protocol::CanFrame& frame);
 
-  // When the dead man's stop frames are due, if the switch is armed and has not fired.
+  // When the dead man's next stop frames are due, if the switch is armed.
   std::optional<SimTimeNs> dead_man_deadline_ns() const;
-  // The eight stop frames (µ0 … µ7); disarms the switch until the next 0x80.
+  // The eight stop frames (µ0 … µ7); the next are due one overflow later.
   std::array<protocol::CanFrame, 8> fire_dead_man();
 
   // The readings µ8 would send now (advances the noise and the tilt channel like a response).
@@ -66,7 +67,9 @@ class SensorController {
   const std::array<char, 8>& lcd_characters() const { return lcd_; }
   // The 16 characters on the display: the text and the supply voltage, or the idle text.
   std::string lcd_display() const;
+  // Silences the switch ended with stop frames, and the times it sent them (repeats included).
   std::uint64_t dead_man_stops() const { return dead_man_stops_; }
+  std::uint64_t dead_man_firings() const { return dead_man_firings_; }
   const std::optional<protocol::MeasurementResponse>& last_measurement() const {
     return last_measurement_;
   }
@@ -86,8 +89,9 @@ class SensorController {
   std::optional<SimTimeNs> last_request_ns_;
   std::uint8_t dog_ = 0;
   SimTimeNs dead_man_start_ns_ = 0;
-  bool dead_man_fired_ = false;
+  std::uint32_t dead_man_overflows_ = 0;  // stop frames sent since dead_man_start_ns_
   std::uint64_t dead_man_stops_ = 0;
+  std::uint64_t dead_man_firings_ = 0;
 };
 
 }  // namespace marsokhod::sim

@@ -181,11 +181,16 @@ TEST(SensorFirmware, DeadMansSwitchStopsTheMotorsAfterDogTicksOfSilence) {
   pair.expect_same(10 * kMs, measurement(false, false, "        "), "first 0x80");
   EXPECT_EQ(pair.emulation().dead_man_deadline_ns(), 10 * kMs + 2 * kDeadManPeriodNs);
   expect_stop(pair, 10 * kMs, "silence after 10 ms");
+  // Again every overflow while the silence lasts (a stop frame the bus lost gets there later).
+  EXPECT_EQ(pair.emulation().dead_man_deadline_ns(), 10 * kMs + 3 * kDeadManPeriodNs);
+  expect_stop(pair, 10 * kMs, "the first repeat");
+  expect_stop(pair, 10 * kMs, "the second repeat");
   pair.advance(1200 * kMs);
-  EXPECT_TRUE(pair.firmware().take_transmitted().empty()) << "once per silence";
+  EXPECT_TRUE(pair.firmware().take_transmitted().empty()) << "a repeat before its overflow";
   pair.expect_same(1210 * kMs, measurement(true, false, "again   "), "re-arm");
   pair.expect_same(1500 * kMs, measurement(true, false, "fed     "), "feed before the deadline");
   expect_stop(pair, 1500 * kMs, "silence after 1.5 s");
+  // Disabled in the middle of the repeats: they end.
   pair.expect_same(2100 * kMs, protocol::encode(protocol::DeadManRequest{0}), "dog 0");
   pair.expect_same(2110 * kMs, measurement(false, true, "disabled"), "0x80, disabled");
   pair.advance(2800 * kMs);

@@ -97,22 +97,56 @@ TEST(RoverFirmware, DeadManStopsAllMotorsOnTime) {
   ASSERT_GT(last_measurement_ns, 10 * kMs);
   const SimTimeNs deadline_ns = last_measurement_ns + 2 * 262'144'000;
   std::vector<BusDelivery> stops;
-  for (const BusDelivery& delivery : run(firmware, 20 * kMs, 1000 * kMs)) {
+  // The first stop frames, and the repeat one tick later (the silence lasts).
+  const SimTimeNs after_repeat_ns = deadline_ns + 262'144'000 + 5 * kMs;
+  for (const BusDelivery& delivery : run(firmware, 20 * kMs, after_repeat_ns)) {
     if (delivery.origin == 8) {
       stops.push_back(delivery);
     }
   }
-  ASSERT_EQ(stops.size(), 8U);
+  ASSERT_EQ(stops.size(), 16U);
   EXPECT_EQ(stops[0].ready_ns, deadline_ns);
   EXPECT_EQ(stops[0].start_ns, deadline_ns);  // the bus is idle: SOF at the deadline
-  for (std::uint8_t node = 0; node < 8; ++node) {
+  EXPECT_EQ(stops[8].start_ns, deadline_ns + 262'144'000);
+  for (std::uint8_t node = 0; node < 16; ++node) {
     EXPECT_EQ(std::get<protocol::ControlRequest>(protocol::decode(stops[node].frame).message()),
-              (protocol::ControlRequest{node, false, true, 0}));
+              (protocol::ControlRequest{static_cast<std::uint8_t>(node % 8), false, true, 0}));
   }
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     EXPECT_EQ(firmware.duty()[i], 0.0);
   }
   EXPECT_EQ(firmware.sensor_controller().dead_man_stops(), 1U);
+  EXPECT_EQ(firmware.sensor_controller().dead_man_firings(), 2U);
+}
+
+// Soak seed 734: the bus lost µ8's one stop frame to µ7, which kept its duty through a 30-s
+// brown-out. µ8 sends them again every tick while the silence lasts, so the motor stops one tick
+// later, and the loss is counted for the soak's dead-man check.
+TEST(RoverFirmware, ALostStopFrameReachesItsMotorOneTickLater) {
+  RoverFirmware firmware(wheels_only_params(), exact_sim_truth(Params{}), 1);
+  firmware.send(protocol::encode(protocol::DeadManRequest{1}), 0);
+  send_cycle(firmware, 10 * kMs, 300);
+  run(firmware, 0, 20 * kMs);
+  ASSERT_EQ(firmware.duty()[5], 300.0 / 511.0);
+  const std::optional<SimTimeNs> deadline_ns =
+      firmware.sensor_controller().dead_man_deadline_ns();
+  ASSERT_TRUE(deadline_ns);
+  run(firmware, 20 * kMs, *deadline_ns - kMs);
+  EXPECT_EQ(firmware.stop_frames_lost(), (std::array<std::uint64_t, kMotorCount>{}));
+  firmware.set_frame_loss_probability(1.0);  // the first stop frames are lost
+  run(firmware, *deadline_ns - kMs, *deadline_ns + 5 * kMs);
+  firmware.set_frame_loss_probability(0.0);
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    EXPECT_EQ(firmware.stop_frames_lost()[i], 1U) << i;
+  }
+  EXPECT_EQ(firmware.duty()[5], 300.0 / 511.0);
+  run(firmware, *deadline_ns + 5 * kMs, *deadline_ns + 262'144'000 - kMs);
+  EXPECT_EQ(firmware.duty()[5], 300.0 / 511.0);
+  run(firmware, *deadline_ns + 262'144'000 - kMs, *deadline_ns + 262'144'000 + 5 * kMs);
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    EXPECT_EQ(firmware.duty()[i], 0.0) << i;
+    EXPECT_EQ(firmware.stop_frames_lost()[i], 1U) << i;
+  }
 }
 
 TEST(RoverFirmware, SilentControllerActsButNeverAnswers) {

@@ -121,7 +121,12 @@ TEST(SimSensorController, DeadManDeadlineIsDogPeriodsAfterTheLastMeasurementRequ
     EXPECT_EQ(std::get<protocol::ControlRequest>(decoded.message()),
               (protocol::ControlRequest{node, false, true, 0}));
   }
-  EXPECT_FALSE(sensor.dead_man_deadline_ns());  // fired once per silence
+  // Again every tick while the silence lasts; the silence counts once.
+  EXPECT_EQ(*sensor.dead_man_deadline_ns(), 100 * kMs + 1'310'720'000);
+  EXPECT_EQ(sensor.fire_dead_man(), stops);
+  EXPECT_EQ(*sensor.dead_man_deadline_ns(), 100 * kMs + 1'572'864'000);
+  EXPECT_EQ(sensor.dead_man_stops(), 1U);
+  EXPECT_EQ(sensor.dead_man_firings(), 2U);
   sensor.advance(2000 * kMs, typical_state());
   sensor.receive(protocol::encode(protocol::MeasurementRequest{}));
   EXPECT_EQ(*sensor.dead_man_deadline_ns(), 2000 * kMs + 1'048'576'000);
