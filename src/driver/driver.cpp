@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/mobility/lever_geometry.hpp"
 #include "core/protocol/codec.hpp"
@@ -12,6 +13,9 @@ namespace marsokhod::driver {
 namespace {
 
 constexpr double kStillSpeedRadps = 0.01;  // below this every motor counts as standing
+// A joint whose p̄ may be this far off (motor_position.hpp: uncertainty_counts) is reported in
+// the warnings: 0.01 rad (0.6°, 183 pulses), the tolerance the soak allows a joint outside (5.3).
+constexpr double kJointUncertaintyWarningRad = 0.01;
 
 }  // namespace
 
@@ -68,6 +72,7 @@ std::optional<JointMemory> Driver::joint_memory() const {
     memory.joints[k].shaft_rad = m.position_rad[j] + position_offset_rad_[j];
     memory.joints[k].joint_rad = p[j];
     memory.joints[k].duty = duty_[j];
+    memory.joints[k].uncertainty_rad = status_.motors[j].position_uncertainty_rad;
   }
   return memory;
 }
@@ -96,6 +101,8 @@ void Driver::take_kept_joints() {
       continue;
     }
     position_offset_rad_[j] = restored->shaft_rad - m.position_rad[j];
+    uncertainty_origin_counts_[j] = motors_.motor(j).position().uncertainty_counts();
+    uncertainty_carried_rad_[j] = kept_->joints[k].uncertainty_rad;
     positions[j] = restored->joint_rad;
     take_up_travel[k] = restored->shaft_rad - negative_bound[k];
     char text[64];
@@ -216,6 +223,16 @@ void Driver::update_faults(const OperatorInput* input) {
   if (intake_.counters().malformed > 0) {
     status_.warnings.push_back("malformed frames: " + intake_.counters().last_error);
   }
+  for (const std::size_t j : {kFrontJoint, kRearJoint}) {
+    const double uncertainty_rad = status_.motors[j].position_uncertainty_rad;
+    if (uncertainty_rad < kJointUncertaintyWarningRad) continue;
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "µ%zu's position uncertain by %.3f rad (direction changes its registers hid); "
+                  "its bounds are narrowed by as much: recalibrate (Procedure 4.3)",
+                  j, uncertainty_rad);
+    status_.warnings.emplace_back(text);
+  }
 }
 
 MotionInput Driver::motion_input(double period_s) const {
@@ -225,6 +242,11 @@ MotionInput Driver::motion_input(double period_s) const {
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     in.shaft_position_rad[i] = m.position_rad[i] + position_offset_rad_[i];
     in.shaft_velocity_radps[i] = m.velocity_radps[i];
+    const std::uint64_t counts = motors_.motor(i).position().uncertainty_counts();
+    in.position_uncertainty_rad[i] =
+        uncertainty_carried_rad_[i] +
+        tracking::encoder_rad_per_count(params_->motors.encoder_pulses_per_rev) *
+            static_cast<double>(counts - std::min(counts, uncertainty_origin_counts_[i]));
   }
   // Until µ8 has answered, the nominal voltage and a level rover stand in.
   in.supply_v = status_.supply_v > 1.0 ? status_.supply_v : params_->motors.nominal_supply_v;
@@ -252,6 +274,8 @@ void Driver::reset_joint_positions(std::array<double, 2> dragged_rad) {
     const std::size_t j = joints[k];
     shaft[j] = bounds[k].clamp(params_->motors.initial_position_rad[j] - dragged_rad[k]);
     position_offset_rad_[j] = shaft[j] - m.position_rad[j];
+    uncertainty_origin_counts_[j] = motors_.motor(j).position().uncertainty_counts();
+    uncertainty_carried_rad_[j] = 0.0;
   }
   motion_.reset_joint_positions(shaft);
   status_.joints_known = true;

@@ -101,6 +101,10 @@ class Driver {
   DriverStatus status_;
   mobility::OperatorTargets targets_;
   MotorVector position_offset_rad_{};  // Procedure 4.3 re-zeroes the joints' p̄
+  // The trackers' uncertainty_counts() when p̄ was last set (Procedure 4.3, a kept state), and
+  // the uncertainty a kept state brought along
+  std::array<std::uint64_t, kMotorCount> uncertainty_origin_counts_{};
+  MotorVector uncertainty_carried_rad_{};
   MotorVector duty_{};
   std::array<bool, kMotorCount + 1> expected_{};
   std::optional<double> start_time_s_;

@@ -9,7 +9,8 @@
 // controllers run down to a few volts): their enc, stp and dir registers go on counting what the
 // shafts do while the driver is down. So the driver keeps, after every cycle, per joint:
 //   the registers (enc, stp, dir) of µj's last 0xj1 response, the shaft position p̄ it gave,
-//   the joint position p of (4.1) after it,
+//   the joint position p of (4.1) after it, how far p̄ may be off (the position's uncertainty,
+//   motor_position.hpp: carried on and added to),
 // and the duty cycle d it sent µj in that cycle. A restarted driver continues from there: the
 // first 0xj1 response it receives gives the shaft's movement since the kept reading from the
 // registers, which went on counting:
@@ -58,6 +59,7 @@ struct KeptJoint {
   double shaft_rad = 0.0;            // p̄ at that reading
   double joint_rad = 0.0;            // p of (4.1) after it
   double duty = 0.0;                 // d sent µj in that cycle
+  double uncertainty_rad = 0.0;      // how far p̄ may be off (motor_position.hpp), carried on
   bool operator==(const KeptJoint& other) const = default;
 };
 

@@ -105,6 +105,7 @@ void MotionController::track(const MotionInput& input, DriverStatus& status) {
     MotorStatus& m = status.motors[i];
     m.shaft_position_rad = input.shaft_position_rad[i];
     m.position_rad = p[i];
+    m.position_uncertainty_rad = input.position_uncertainty_rad[i];
     m.velocity_radps = w[i];
     m.no_load_velocity_radps = nu[i];
     m.load_radps = load_[i];
@@ -238,6 +239,22 @@ behaviour::JointBounds MotionController::with_backlash_margin(behaviour::JointBo
   return bounds;
 }
 
+behaviour::JointBounds MotionController::narrowed_by_uncertainty(behaviour::JointBounds bounds,
+                                                                const DriverStatus& status) {
+  // What the encoder registers hid (motor_position.hpp): the joint may lie that far from p̄
+  // either way, so both bounds move in by as much (to the middle at most).
+  const auto narrow = [](double& min_rad, double& max_rad, double uncertainty_rad) {
+    const double in_rad = std::min(uncertainty_rad, 0.5 * (max_rad - min_rad));
+    min_rad += in_rad;
+    max_rad -= in_rad;
+  };
+  narrow(bounds.front_min_rad, bounds.front_max_rad,
+         status.motors[kFrontJoint].position_uncertainty_rad);
+  narrow(bounds.rear_min_rad, bounds.rear_max_rad,
+         status.motors[kRearJoint].position_uncertainty_rad);
+  return bounds;
+}
+
 MotorVector MotionController::to_duty(const MotorVector& w_hat, const MotionInput& input) const {
   MotorVector duty{};
   for (std::size_t i = 0; i < kMotorCount; ++i) {
@@ -316,15 +333,21 @@ MotorVector MotionController::walking_motion(JointCommands joints,
   rear_placement_ = rear_place.state;
   status.front_axle_factor = front_place.placement;
   status.rear_axle_factor = rear_place.placement;
+  // No command pushes a joint further out than the bounds less its position's uncertainty; one
+  // found inside that band is not pulled back in (it would hold a duty to move a few pulses,
+  // and the rover would never stand still for the gyro's null).
+  const behaviour::JointBounds outward = narrowed_by_uncertainty(bounds, status);
   joints.front_radps = respect_bounds(joints.front_radps, predicted_joint_position(kFrontJoint, status),
-                                      bounds.front_min_rad, bounds.front_max_rad);
+                                      outward.front_min_rad, outward.front_max_rad);
   joints.rear_radps = respect_bounds(joints.rear_radps, predicted_joint_position(kRearJoint, status),
-                                     bounds.rear_min_rad, bounds.rear_max_rad);
+                                     outward.rear_min_rad, outward.rear_max_rad);
   // Should the computer die after this cycle, the joints run on for µ8's delay: keep that run
-  // inside (5.3) less the backlash margin (joint_margin.hpp), whatever the behaviours' bounds.
-  const behaviour::JointBounds hard = with_backlash_margin(
-      {params_->joints.front_min_rad, params_->joints.front_max_rad, params_->joints.rear_min_rad,
-       params_->joints.rear_max_rad},
+  // inside (5.3) less the backlash margin (joint_margin.hpp) and the uncertainty, whatever the
+  // behaviours' bounds.
+  const behaviour::JointBounds hard = narrowed_by_uncertainty(
+      with_backlash_margin({params_->joints.front_min_rad, params_->joints.front_max_rad,
+                            params_->joints.rear_min_rad, params_->joints.rear_max_rad},
+                           status),
       status);
   const auto shaft_load = [&](std::size_t motor) {
     return input.shaft_velocity_radps[motor] - status.motors[motor].no_load_velocity_radps;

@@ -32,6 +32,10 @@ struct MotionInput {
   double period_s = 0.0;
   MotorVector shaft_position_rad{};   // p̄ (calibration offsets applied)
   MotorVector shaft_velocity_radps{}; // w̄
+  // How far p̄ may be off for what the encoder registers hid since Procedure 4.3
+  // (motor_position.hpp): no command pushes a joint further out than its bounds narrowed by as
+  // much at both ends
+  MotorVector position_uncertainty_rad{};
   double supply_v = 24.0;             // U
   double reference_supply_v = 0.0;    // Ū (Procedure 3.5); 0 until µ8 has answered
   std::array<double, 3> accel_mps2{0.0, 0.0, -9.81};
@@ -76,6 +80,9 @@ class MotionController {
   double predicted_joint_position(std::size_t motor, const DriverStatus& status) const;
   behaviour::JointBounds with_backlash_margin(behaviour::JointBounds bounds,
                                               const DriverStatus& status) const;
+  // The bounds less the joints' position uncertainty at both ends (to the middle at most).
+  static behaviour::JointBounds narrowed_by_uncertainty(behaviour::JointBounds bounds,
+                                                        const DriverStatus& status);
   JointCommands joint_commands(const MotionInput& input, const RuntimeSettings& settings,
                                DriverStatus& status);
   // Step 4's parts: D of (6.3); σ and the joint bounds (6.4) with the backlash margin.

@@ -29,6 +29,7 @@ const char* mode_name(DriverMode mode);
 struct MotorStatus {
   double shaft_position_rad = 0.0;  // p̄ (chapter 3.2)
   double position_rad = 0.0;        // p, after backlash (4.1)
+  double position_uncertainty_rad = 0.0;  // how far p̄ may be off (motor_position.hpp)
   double velocity_radps = 0.0;      // w (4.2)
   double no_load_velocity_radps = 0.0;  // ν (4.4)
   double load_radps = 0.0;          // l = w − ν (Definition 4.9)

@@ -17,6 +17,7 @@ using Json = nlohmann::json;
 Json motor_json(const driver::MotorStatus& motor) {
   return {{"shaft_position_rad", motor.shaft_position_rad},
           {"position_rad", motor.position_rad},
+          {"position_uncertainty_rad", motor.position_uncertainty_rad},
           {"velocity_radps", motor.velocity_radps},
           {"no_load_velocity_radps", motor.no_load_velocity_radps},
           {"load_radps", motor.load_radps},

@@ -40,7 +40,8 @@ nlohmann::json joint_memory_json(const driver::JointMemory& memory) {
                       {"dir", j.reading.dir},
                       {"shaft_rad", j.shaft_rad},
                       {"joint_rad", j.joint_rad},
-                      {"duty", j.duty}});
+                      {"duty", j.duty},
+                      {"uncertainty_rad", j.uncertainty_rad}});
   }
   return {{"known", memory.known}, {"joints", joints}};
 }
@@ -64,6 +65,15 @@ driver::JointMemory joint_memory_from_json(const nlohmann::json& json, const std
     if (!(std::abs(j.duty) <= 1.0)) {
       throw std::invalid_argument(field + "duty must lie in [-1, 1], not " +
                                   link::shown_value(joints[k]["duty"]));
+    }
+    // Absent in states kept before the driver counted it: none carried.
+    if (joints[k].contains("uncertainty_rad")) {
+      j.uncertainty_rad =
+          link::read_number(joints[k]["uncertainty_rad"], field + "uncertainty_rad");
+      if (!(j.uncertainty_rad >= 0.0 && std::isfinite(j.uncertainty_rad))) {
+        throw std::invalid_argument(field + "uncertainty_rad must be a finite number ≥ 0, not " +
+                                    link::shown_value(joints[k]["uncertainty_rad"]));
+      }
     }
   }
   return memory;

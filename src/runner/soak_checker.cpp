@@ -31,8 +31,9 @@ void for_each_number(const driver::DriverStatus& s,
   visit("rear_tilt_rad", s.rear_tilt_rad);
   visit("slope_rad", s.slope_rad);
   for (const driver::MotorStatus& m : s.motors) {
-    for (double v : {m.shaft_position_rad, m.position_rad, m.velocity_radps,
-                     m.no_load_velocity_radps, m.load_radps, m.commanded_radps, m.duty}) {
+    for (double v : {m.shaft_position_rad, m.position_rad, m.position_uncertainty_rad,
+                     m.velocity_radps, m.no_load_velocity_radps, m.load_radps,
+                     m.commanded_radps, m.duty}) {
       visit("motors[]", v);
     }
   }

@@ -305,6 +305,42 @@ TEST_F(DriverTest, JointBoundsAreNeverExceeded) {
   }
 }
 
+// The rear joint, extended and at rest, springs back 200 pulses and forward again inside one
+// cycle: the registers hide both changes, p̄ counts the 200 after the last one (the truth: 0),
+// and the status says p̄ may be off by 200 pulses, 0.0109 rad; past 0.01 rad a warning asks for
+// Procedure 4.3. Contracted, the joint then stops that far inside p7_min by p̄: the truth, 200
+// pulses below p̄, at p7_min.
+TEST_F(DriverTest, WhatTheRegistersHidIsReportedAndKeptFromTheBounds) {
+  start_up();
+  OperatorInput extend = targets(0.0);
+  extend.targets->v7_radps = 0.5;
+  cycles(100, &extend);
+  const OperatorInput rest = targets(0.0);
+  cycles(100, &rest);
+  ASSERT_GT(driver.status().motors[kRearJoint].position_rad, params.joints.rear_min_rad + 0.2);
+  EXPECT_EQ(driver.status().motors[kRearJoint].position_uncertainty_rad, 0.0);
+  EXPECT_TRUE(driver.status().warnings.empty());
+  const double before_rad = driver.status().motors[kRearJoint].shaft_position_rad;
+  rover.spring_back_pulses[kRearJoint] = 200;
+  cycles(3, &rest);
+  const double uncertainty_rad = 200.0 * 2.0 * std::numbers::pi / 115000.0;
+  const MotorStatus& rear = driver.status().motors[kRearJoint];
+  EXPECT_NEAR(rear.position_uncertainty_rad, uncertainty_rad, 1e-12);
+  EXPECT_NEAR(std::abs(rear.shaft_position_rad - before_rad), uncertainty_rad, 1e-9);
+  EXPECT_EQ(driver.status().motors[kFrontJoint].position_uncertainty_rad, 0.0);
+  ASSERT_EQ(driver.status().warnings.size(), 1U);
+  EXPECT_EQ(driver.status().warnings[0],
+            "µ7's position uncertain by 0.011 rad (direction changes its registers hid); its "
+            "bounds are narrowed by as much: recalibrate (Procedure 4.3)");
+  OperatorInput contract = targets(0.0);
+  contract.targets->v7_radps = -0.5;
+  cycles(600, &contract);
+  EXPECT_NEAR(driver.status().motors[kRearJoint].position_rad,
+              params.joints.rear_min_rad + uncertainty_rad, 2e-3);
+  EXPECT_GE(driver.status().motors[kRearJoint].position_rad,
+            params.joints.rear_min_rad + uncertainty_rad - 1e-3);
+}
+
 TEST_F(DriverTest, StatusCarriesTheSensorReadings) {
   start_up();
   const DriverStatus& s = driver.status();
@@ -496,6 +532,32 @@ TEST_F(RestartDriverTest, ContinuesFromTheKeptJointsWithoutProcedure43) {
 // A rear joint kept 0.003 rad above p7_min: less than a shaft started from rest runs on before
 // its readings can stop it (Startup::free_run_on_rad, 0.0073 rad), so its gap is not taken up —
 // the rear shaft never turns — and the status says so; the front one's is.
+// The joints' position uncertainty goes into the kept state and comes back with it: a restarted
+// driver starts from it (and warns), adds what its own registers hide, and keeps it on.
+TEST_F(RestartDriverTest, TheKeptUncertaintyIsCarriedOn) {
+  JointMemory kept = walk_and_keep();
+  EXPECT_EQ(kept.joints[1].uncertainty_rad, 0.0);
+  kept.joints[1].uncertainty_rad = 0.02;
+  inbox.clear();
+  Driver restarted(params, kept);
+  for (int k = 0; k < 400 && restarted.status().mode != DriverMode::kDriving; ++k) {
+    restarted_cycle(restarted);
+  }
+  ASSERT_EQ(restarted.status().mode, DriverMode::kDriving);
+  EXPECT_DOUBLE_EQ(restarted.status().motors[kRearJoint].position_uncertainty_rad, 0.02);
+  EXPECT_EQ(restarted.status().motors[kFrontJoint].position_uncertainty_rad, 0.0);
+  rover.spring_back_pulses[kRearJoint] = 100;
+  for (int k = 0; k < 3; ++k) restarted_cycle(restarted);
+  const double total_rad = 0.02 + 100.0 * 2.0 * std::numbers::pi / 115000.0;
+  EXPECT_NEAR(restarted.status().motors[kRearJoint].position_uncertainty_rad, total_rad, 1e-12);
+  ASSERT_EQ(restarted.status().warnings.size(), 1U);
+  EXPECT_EQ(restarted.status().warnings[0].rfind("µ7's position uncertain by 0.025 rad", 0), 0U)
+      << restarted.status().warnings[0];
+  const auto again = restarted.joint_memory();
+  ASSERT_TRUE(again.has_value());
+  EXPECT_NEAR(again->joints[1].uncertainty_rad, total_rad, 1e-12);
+}
+
 TEST_F(RestartDriverTest, AJointTooNearItsBoundForATakeUpKeepsItsPlace) {
   JointMemory kept = walk_and_keep();
   const double allowed = 0.003;

@@ -108,5 +108,43 @@ TEST(MotionControllerDriving, DriftTargetDrivesTheExteriorWheelsAgainstEachOther
   EXPECT_EQ(status.commands.v4_radps, 0.0);
 }
 
+// A joint whose p̄ may be off (the encoder registers hid direction changes, motor_position.hpp)
+// is pushed no further out than its bounds narrowed by as much at both ends: the rear joint at
+// 1.25 rad with 0.05 rad of uncertainty stands below its narrowed p7_min = 1.2121 + 0.05, and the
+// operator's v7 < 0 (down, out) is refused where it moves the joint without the uncertainty. It
+// is not pulled back in (the behaviours' bounds in the status stay), and moving in is allowed.
+// An uncertainty past half the range narrows both bounds to the middle: nothing moves out.
+TEST(MotionControllerBounds, NoCommandPushesAJointOutPastItsUncertainty) {
+  const Params params;
+  const auto run = [&](double rear_uncertainty_rad, double v7_radps) {
+    MotionController controller(params);
+    MotorVector p{};
+    p[kFrontJoint] = -1.8;
+    p[kRearJoint] = 1.25;
+    controller.reset_joint_positions(p);
+    MotionInput input;
+    input.period_s = params.cycle.period_s;
+    input.shaft_position_rad = p;
+    input.reference_supply_v = 24.0;
+    input.position_uncertainty_rad[kRearJoint] = rear_uncertainty_rad;
+    input.targets.v7_radps = v7_radps;
+    DriverStatus status;
+    for (int k = 0; k < 20; ++k) controller.update(input, runtime_settings_from(params), status);
+    return status;
+  };
+  const DriverStatus certain = run(0.0, -0.3);
+  EXPECT_NEAR(certain.joint_bounds.rear_min_rad, 1.2121, 1e-9);
+  EXPECT_LT(certain.commands.v7_radps, -0.05);
+  EXPECT_LT(run(0.03, -0.3).commands.v7_radps, 0.0);  // inside 1.2421: slowed, still out
+  const DriverStatus uncertain = run(0.05, -0.3);
+  EXPECT_EQ(uncertain.commands.v7_radps, 0.0);
+  EXPECT_NEAR(uncertain.joint_bounds.rear_min_rad, 1.2121, 1e-9);
+  EXPECT_DOUBLE_EQ(uncertain.motors[kRearJoint].position_uncertainty_rad, 0.05);
+  EXPECT_EQ(run(0.05, 0.0).commands.v7_radps, 0.0);  // not pulled in
+  EXPECT_GT(run(0.05, 0.3).commands.v7_radps, 0.05);  // in is fine
+  EXPECT_EQ(run(5.0, -0.3).commands.v7_radps, 0.0);
+  EXPECT_GT(run(5.0, 0.3).commands.v7_radps, 0.05);   // toward the middle: in
+}
+
 }  // namespace
 }  // namespace marsokhod::driver

@@ -39,6 +39,9 @@ class ScriptedRover {
   std::array<double, 8> meets_joint_after_rad{};
   double dragging_speed_share = 1.0;
   std::array<double, 8> dragged_rad{};
+  // Before its next response the shaft springs back this many pulses and forward again: two
+  // direction changes inside one cycle, which leave dir as it was and move stp (motor_position.hpp)
+  std::array<int, 8> spring_back_pulses{};
 
   // Applies one cycle's requests, moves the motors for dt, and returns the responses.
   std::vector<protocol::CanFrame> respond(const std::vector<protocol::CanFrame>& requests,
@@ -103,6 +106,12 @@ class ScriptedRover {
     if (meets_joint_after_rad[node] > 0.0 && -shaft_rad[node] >= meets_joint_after_rad[node]) {
       speed *= dragging_speed_share;
       dragged_rad[node] += std::abs(speed) * dt_s;
+    }
+    if (spring_back_pulses[node] > 0) {
+      const double n = spring_back_pulses[node];
+      r.stp = wrap(r.pulses + n);  // the second change, after n pulses back
+      r.pulses += 2.0 * n;
+      spring_back_pulses[node] = 0;
     }
     const bool dir = speed < 0.0;
     if (speed != 0.0 && dir != r.dir) {

@@ -26,8 +26,8 @@ driver::DriverStatus sample_status() {
   s.slope_rad = 0.125;
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     const double k = static_cast<double>(i);
-    s.motors[i] = {k,     k + 0.5, k + 0.25, k + 0.125,          0.125,
-                   4.125, k - 0.5, k / 8.0,  static_cast<int>(i)};
+    s.motors[i] = {k,       k + 0.5, k / 1024.0, k + 0.25,           k + 0.125,
+                   0.125,   4.125,   k - 0.5,    k / 8.0,            static_cast<int>(i)};
   }
   s.sensor_silent_cycles = 2;
   s.max_duty = 0.75;
@@ -117,6 +117,7 @@ TEST(StatusJson, KeysEveryMotorByItsName) {
     const double k = static_cast<double>(i);
     EXPECT_EQ(m["shaft_position_rad"], k);
     EXPECT_EQ(m["position_rad"], k + 0.5);
+    EXPECT_EQ(m["position_uncertainty_rad"], k / 1024.0);
     EXPECT_EQ(m["velocity_radps"], k + 0.25);
     EXPECT_EQ(m["no_load_velocity_radps"], k + 0.125);
     EXPECT_EQ(m["load_radps"], 0.125);

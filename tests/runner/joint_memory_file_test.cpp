@@ -16,8 +16,8 @@ using testing::ScratchFolder;
 
 driver::JointMemory sample() {
   driver::JointMemory m;
-  m.joints[0] = {{65535, 12, true}, -2.4600498747938166, -2.4312345678901234, -0.0411};
-  m.joints[1] = {{0, 40000, false}, 1.2864999999999999, 1.2602, 0.0};
+  m.joints[0] = {{65535, 12, true}, -2.4600498747938166, -2.4312345678901234, -0.0411, 0.0};
+  m.joints[1] = {{0, 40000, false}, 1.2864999999999999, 1.2602, 0.0, 0.012349999999999999};
   return m;
 }
 
@@ -66,6 +66,29 @@ TEST(JointMemoryFile, ADamagedFileNamesTheFileAndTheField) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("joints[0].enc must be an integer in 0..65535"),
+              std::string::npos)
+        << e.what();
+  }
+  // A state kept before the driver counted its joints' uncertainty carries none; a negative one
+  // is refused.
+  folder.write("joints.json",
+               R"({"written_unix_s": 10, "known": true, "joints": [)"
+               R"({"enc": 7, "stp": 0, "dir": false, "shaft_rad": 0, "joint_rad": 0, "duty": 0},)"
+               R"({"enc": 0, "stp": 0, "dir": false, "shaft_rad": 0, "joint_rad": 0, "duty": 0}]})");
+  const auto old = file.load(20.0, note);
+  ASSERT_TRUE(old.has_value()) << note;
+  EXPECT_EQ(old->joints[0].uncertainty_rad, 0.0);
+  EXPECT_EQ(old->joints[0].reading.enc, 7);
+  folder.write("joints.json",
+               R"({"written_unix_s": 10, "known": true, "joints": [)"
+               R"({"enc": 7, "stp": 0, "dir": false, "shaft_rad": 0, "joint_rad": 0, "duty": 0},)"
+               R"({"enc": 0, "stp": 0, "dir": false, "shaft_rad": 0, "joint_rad": 0, "duty": 0,)"
+               R"( "uncertainty_rad": -0.01}]})");
+  try {
+    file.load(20.0, note);
+    FAIL() << "a negative uncertainty was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("joints[1].uncertainty_rad must be a finite number ≥ 0"),
               std::string::npos)
         << e.what();
   }

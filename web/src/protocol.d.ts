@@ -249,6 +249,7 @@ export type MotorName = 'FL' | 'FR' | 'CL' | 'CR' | 'BL' | 'BR' | 'AF' | 'AR';
 export interface MotorStatus {
   shaft_position_rad: StatusNumber;
   position_rad: StatusNumber;
+  position_uncertainty_rad: StatusNumber;
   velocity_radps: StatusNumber;
   no_load_velocity_radps: StatusNumber;
   load_radps: StatusNumber;

@@ -63,9 +63,11 @@ double PositionTracker::update(const EncoderReading& reading) {
     accumulated_counts_ += increment.counts;
     if (increment.reversal_point_unknown) {
       ++unknown_reversal_count_;
+      uncertainty_counts_ += counter_difference(reading.enc, previous_.enc);
     }
     if (increment.hidden_reversals) {
       ++hidden_reversal_count_;
+      uncertainty_counts_ += counter_difference(reading.stp, previous_.enc);
     }
   }
   started_ = true;

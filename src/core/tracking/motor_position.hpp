@@ -19,7 +19,9 @@
 //   those pulses count as net zero, the midpoint of [−a, a] (a = (stp^k − enc^(k−1)) mod 65536),
 //   and the pulses after it in the direction dir reads:
 //     dir unchanged, stp^k ≠ stp^(k−1), stp^k on the arc: Δ = (enc^k − stp^k) mod 65536.
-//   The error is then at most a instead of up to 2a. It matters where a joint sticks and slips:
+//   The error is then at most a instead of up to 2a (the truth's x − y lies in [−a, a − 2]: stp
+//   is taken before the first pulse in a new direction, so at least one went back); the tracker
+//   sums those a as the position's uncertainty. It matters where a joint sticks and slips:
 //   its coupling springs the shaft back a few pulses and forward again inside one 15.6 ms cycle
 //   every stroke (RELIABILITY.md, rear-wheel-walking-slope-slant-off).
 // - More than 65535 pulses (3.58 rad) between two readings wrap unseen; at the no-load speed
@@ -72,6 +74,11 @@ class PositionTracker {
   std::uint64_t unknown_reversal_count() const { return unknown_reversal_count_; }
   // How many readings showed stp moved while dir stayed (two changes inside one cycle).
   std::uint64_t hidden_reversal_count() const { return hidden_reversal_count_; }
+  // How far p̄ may be off for what the registers hid, in pulses, summed since the first reading:
+  // a for each hidden pair (the midpoint's error is at most a), the whole arc for each reversal
+  // with an unknown point (Δ = 0 there, the truth within ± the arc). Lost pulses are not in it:
+  // nothing shows them.
+  std::uint64_t uncertainty_counts() const { return uncertainty_counts_; }
   // The registers of the last reading (meaningful once started).
   const EncoderReading& last_reading() const { return previous_; }
 
@@ -82,6 +89,7 @@ class PositionTracker {
   std::int64_t accumulated_counts_ = 0;
   std::uint64_t unknown_reversal_count_ = 0;
   std::uint64_t hidden_reversal_count_ = 0;
+  std::uint64_t uncertainty_counts_ = 0;
   EncoderReading previous_{};
   bool started_ = false;
 };

@@ -102,6 +102,7 @@ TEST(MotorPosition, StickSlipSpringBackCountsNearlyTrue) {
   EXPECT_EQ(controller.true_counts(), 1);
   EXPECT_EQ(tracker.accumulated_counts(), 13);
   EXPECT_EQ(tracker.hidden_reversal_count(), 1U);
+  EXPECT_EQ(tracker.uncertainty_counts(), 14U);  // the 14 pulses before the last change
   // Going on without reversals, the readings count exactly again.
   controller.turn(400);
   tracker.update(controller.reading());
@@ -129,6 +130,38 @@ TEST(MotorPosition, StaleStpGivesTheMidpointEstimate) {
   tracker.update({130, 0, true});
   EXPECT_EQ(tracker.unknown_reversal_count(), 1U);
   EXPECT_DOUBLE_EQ(tracker.position_rad(), 0.0);
+  // p̄ may be off by the whole arc now.
+  EXPECT_EQ(tracker.uncertainty_counts(), 30U);
+}
+
+// What the registers hid adds up, reading by reading: a hidden pair with a pulses before its
+// last change may be off by a (the truth's x − y lies in [−a, a − 2], the midpoint counts 0); a
+// reversal with stp off the arc by the whole arc. Readings the registers explain add nothing.
+TEST(MotorPosition, TheUncertaintyAddsWhatEachReadingHid) {
+  EmulatedMotorController controller(7, 65530);
+  PositionTracker tracker(0.0, kPulsesPerRev);
+  tracker.update(controller.reading());
+  controller.turn(40);  // across the wrap
+  tracker.update(controller.reading());
+  controller.turn(-12);  // one reversal inside the cycle: exact
+  tracker.update(controller.reading());
+  EXPECT_EQ(tracker.uncertainty_counts(), 0U);
+  EXPECT_EQ(tracker.accumulated_counts(), controller.true_counts());
+  controller.turn(-6);  // a hidden pair: 6 + 4 pulses before the last change
+  controller.turn(4);
+  controller.turn(-9);
+  tracker.update(controller.reading());
+  EXPECT_EQ(tracker.hidden_reversal_count(), 1U);
+  EXPECT_EQ(tracker.uncertainty_counts(), 10U);
+  EXPECT_LE(std::abs(tracker.accumulated_counts() - controller.true_counts()), 10);
+  controller.set_eim(false);  // the reversal's point goes unrecorded
+  controller.turn(5);
+  controller.set_eim(true);
+  controller.turn(0);
+  tracker.update(controller.reading());
+  EXPECT_EQ(tracker.unknown_reversal_count(), 1U);
+  EXPECT_EQ(tracker.uncertainty_counts(), 15U);
+  EXPECT_LE(std::abs(tracker.accumulated_counts() - controller.true_counts()), 15);
 }
 
 TEST(MotorPosition, SeveralRevolutionsForwardThenBackAcrossManyWraps) {
