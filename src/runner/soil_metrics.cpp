@@ -26,6 +26,7 @@ const std::vector<std::string>& soil_metric_names() {
   static const std::vector<std::string> names = {
       "soil_cut_m3",          "soil_fill_m3",           "soil_disturbed_m3",
       "soil_compacted_m3",    "soil_mean_compaction_m", "soil_max_depth_m",
+      "soil_max_sinkage_excess_m",
       "final_exterior_rut_depth_m", "final_center_rut_depth_m", "final_trench_depth_m",
       "soil_disturbed_per_m_m3", "soil_compacted_per_m_m3"};
   return names;
@@ -46,6 +47,7 @@ void add_soil_metrics(const Session& session, double distance_m,
   m["soil_compacted_m3"] = v.compacted_m3;
   m["soil_mean_compaction_m"] = area > 0.0 ? v.compacted_m3 / area : 0.0;
   m["soil_max_depth_m"] = grid.deepest_m();
+  m["soil_max_sinkage_excess_m"] = grid.max_sinkage_excess_m();
   const sim::GroundTruth truth = session.rover().truth();
   m["final_exterior_rut_depth_m"] = mean_rut_depth_m(
       grid, truth, std::array{kFrontLeft, kFrontRight, kBackLeft, kBackRight});

@@ -218,6 +218,7 @@ void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
       volume_m3 / (static_cast<double>(cells.size()) * spec_.cell_m * spec_.cell_m);
   for (int cell : cells) {
     surface_[static_cast<std::size_t>(cell)] += depth;
+    note_laid(static_cast<std::size_t>(cell));
     mark_changed_cell(static_cast<std::size_t>(cell));
   }
   volumes_.fill_m3 += volume_m3;
@@ -231,6 +232,7 @@ void SoilGrid::level() {
   behind_earthwork_ = Earthwork{};
   behind_compacted_area_m2_ = 0.0;
   behind_deepest_m_ = 0.0;
+  max_sinkage_excess_m_ = 0.0;
   mark_changed(0, 0, spec_.cells_x - 1, spec_.cells_y - 1);
 }
 
@@ -468,6 +470,7 @@ void SoilGrid::move_downhill(std::size_t first, std::size_t second, double diffe
   const std::size_t lower = difference > 0.0 ? second : first;
   surface_[higher] -= moved;
   surface_[lower] += moved;
+  note_laid(lower);
   const double volume = moved * spec_.cell_m * spec_.cell_m;
   volumes_.cut_m3 += volume;
   volumes_.fill_m3 += volume;

@@ -136,6 +136,16 @@ class SoilGrid {
   double max_depth_m(double x0_m, double y0_m, double x1_m, double y1_m) const;
   // The same over the whole window and the ground it left behind.
   double deepest_m() const;
+  // The most any cell's plastic sinkage has exceeded its depth below its initial surface since
+  // construction or level(): sinkage_m − max(0, initial − surface), taken whenever soil is laid
+  // on a cell. A press alone leaves it at 0 (its cut adds as much to both); soil laid on a pressed
+  // cell raises it by the height laid, because the level Bekker's z is measured from (surface +
+  // sinkage) rises with that loose soil as if it were pressed ground, and pressing it again keeps
+  // it there. On ground where wheels only rolled over their banks it stays within a few
+  // centimetres; where soil slides back into a rut a wheel keeps pressing (a spinning or slipping
+  // wheel's) it grows without bound: the known defect of docs/simulator.md, "The undisturbed
+  // level in a rut".
+  double max_sinkage_excess_m() const { return max_sinkage_excess_m_; }
   // The area of the cells compacted in place (compaction_m > 0), in the window and left behind:
   // compacted_m3 over it is the mean compaction of the ground the wheels pressed.
   double compacted_area_m2() const;
@@ -179,6 +189,11 @@ class SoilGrid {
     return true;
   }
   void move_downhill(std::size_t first, std::size_t second, double difference, double limit_m);
+  // After soil was laid on cell i.
+  void note_laid(std::size_t i) {
+    const double excess = sinkage_[i] - std::max(0.0, initial_[i] - surface_[i]);
+    max_sinkage_excess_m_ = std::max(max_sinkage_excess_m_, excess);
+  }
   void mark_changed(int min_x, int min_y, int max_x, int max_y);
   void mark_changed_cell(std::size_t cell);
 
@@ -195,6 +210,7 @@ class SoilGrid {
   Earthwork behind_earthwork_;
   double behind_compacted_area_m2_ = 0.0;
   double behind_deepest_m_ = 0.0;
+  double max_sinkage_excess_m_ = 0.0;
   // Scratch of press(): the contact cells as bits over their search box (one cell of border),
   // row-major in 64-bit words; the rim cells.
   std::vector<std::uint64_t> contact_bits_;

@@ -107,6 +107,56 @@ TEST(SoilGrid, DepthAndCompactedAreaReadTheRut) {
   expect_balanced(grid);
 }
 
+// The grid's known defect, measured (docs/simulator.md, "The undisturbed level in a rut"): soil
+// that slides back into a pressed rut raises the level Bekker's z is measured from, surface +
+// plastic sinkage, by the height laid, and pressing the rut again to the same rim keeps it there.
+// max_sinkage_excess_m() reads it: a cell's sinkage less its depth below the initial surface. A
+// single press of virgin soil leaves that at 0 (the cut adds to both); after the slide it is, cell
+// by cell, how far the slide raised a pressed cell.
+TEST(SoilGrid, SoilLaidBackIntoAPressedRutRaisesTheUndisturbedLevel) {
+  SoilGrid grid(small_grid(), dry_sand(), flat);
+  const Cylinder wheel{{0.0, 0.0, 0.115 - 0.02}, {0.0, 1.0, 0.0}, 0.115, 0.15};
+  grid.press(wheel);
+  EXPECT_EQ(grid.max_sinkage_excess_m(), 0.0);
+  std::vector<double> pressed(static_cast<std::size_t>(100 * 60));
+  for (int iy = 0; iy < 60; ++iy) {
+    for (int ix = 0; ix < 100; ++ix) {
+      pressed[static_cast<std::size_t>(iy * 100 + ix)] = grid.cell_surface_m(ix, iy);
+    }
+  }
+  // A bank 5 cm high just ahead of the rut's end (the footprint reaches x ≈ ±6.7 cm, cell 56),
+  // slid to the angle of repose.
+  grid.set_cell_surface_m(59, 30, 0.05);
+  grid.relax(CellBox{57, 28, 61, 32}, 3, 50);
+  double rise = 0.0;
+  int rx = 0, ry = 0;
+  for (int iy = 0; iy < 60; ++iy) {
+    for (int ix = 0; ix < 100; ++ix) {
+      const double sinkage = grid.cell_sinkage_m(ix, iy);
+      const double before = pressed[static_cast<std::size_t>(iy * 100 + ix)];
+      const double now = grid.cell_surface_m(ix, iy);
+      if (sinkage > 0.0 && now <= 0.0 && now - before > rise) {
+        rise = now - before;
+        rx = ix;
+        ry = iy;
+      }
+    }
+  }
+  ASSERT_GT(rise, 0.001);  // the slide reached the rut
+  EXPECT_NEAR(grid.max_sinkage_excess_m(), rise, 1e-12);
+  // Pressed again to the same rim, that cell is cut back to where it was; its undisturbed level
+  // now lies `rise` above the ground it never rose above.
+  grid.press(wheel);
+  EXPECT_NEAR(grid.cell_surface_m(rx, ry), pressed[static_cast<std::size_t>(ry * 100 + rx)],
+              1e-12);
+  EXPECT_NEAR(grid.cell_surface_m(rx, ry) + grid.cell_sinkage_m(rx, ry) -
+                  grid.cell_initial_m(rx, ry),
+              rise, 1e-12);
+  EXPECT_GE(grid.max_sinkage_excess_m(), rise);
+  grid.level();
+  EXPECT_EQ(grid.max_sinkage_excess_m(), 0.0);
+}
+
 // The bench's rake (RoverPhysics::level_soil): after a press and an excavation, level() puts every
 // cell back at its initial surface with no sinkage or compaction, and the books start again.
 TEST(SoilGrid, LevelRakesEveryCellBackToItsInitialSurface) {
