@@ -141,10 +141,9 @@ class SoilGrid {
   // on a cell. A press alone leaves it at 0 (its cut adds as much to both); soil laid on a pressed
   // cell raises it by the height laid, because the level Bekker's z is measured from (surface +
   // sinkage) rises with that loose soil as if it were pressed ground, and pressing it again keeps
-  // it there. On ground where wheels only rolled over their banks it stays within a few
-  // centimetres; where soil slides back into a rut a wheel keeps pressing (a spinning or slipping
-  // wheel's) it grows without bound: the known defect of docs/simulator.md, "The undisturbed
-  // level in a rut".
+  // it there. It stays 0 where no soil slid back onto pressed ground; under a spinning or
+  // slipping wheel, whose rut keeps taking soil back, it grows without bound: the known defect of
+  // docs/simulator.md, "The undisturbed level in a rut" (5–14 cm in the shipped sand scenarios).
   double max_sinkage_excess_m() const { return max_sinkage_excess_m_; }
   // The area of the cells compacted in place (compaction_m > 0), in the window and left behind:
   // compacted_m3 over it is the mean compaction of the ground the wheels pressed.
