@@ -23,8 +23,8 @@
 // Window (shift): the grid covers a window of the ground that can move by whole cells, so that it
 // follows a rover across ground larger than itself. Cells the window keeps keep their state; cells
 // it takes in start undisturbed at the initial surface; cells it leaves behind are forgotten but
-// for their share of the earthwork, the compacted area and the deepest cut (their ruts do not come
-// back when the window returns over them).
+// for their share of the earthwork, the compacted area, the deepest cut and the largest sinkage
+// excess (their ruts do not come back when the window returns over them).
 #pragma once
 
 #include <algorithm>

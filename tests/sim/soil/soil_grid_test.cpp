@@ -153,6 +153,10 @@ TEST(SoilGrid, SoilLaidBackIntoAPressedRutRaisesTheUndisturbedLevel) {
                   grid.cell_initial_m(rx, ry),
               rise, 1e-12);
   EXPECT_GE(grid.max_sinkage_excess_m(), rise);
+  // The window leaving the rut behind keeps the run's largest excess, as it keeps the books.
+  const double excess = grid.max_sinkage_excess_m();
+  grid.shift(80, 0);
+  EXPECT_EQ(grid.max_sinkage_excess_m(), excess);
   grid.level();
   EXPECT_EQ(grid.max_sinkage_excess_m(), 0.0);
 }
