@@ -150,11 +150,16 @@ Scenario without_the_slab(const std::string& name) {
 // Chapter 6.3 on soft soil (sim/soil's Wong–Reece wheels on the deformable grid): the same climb
 // as above, the 12° slope without the slab, on the soil model's `sand`. The erosion is the soil
 // the run disturbed (soil_disturbed_m3: the earthwork's cut + fill) per metre the rover climbed.
-// On seeds 1–20 (RELIABILITY.md, 2026-11-29's last tree) h^v climbs further than no redistribution
-// and disturbs less soil per metre climbed on all twenty (0.49–0.91 of it), h^s on 18 and 19 of
-// them (units 14 and 20 climb 0.5 % and 4 % less; unit 14 disturbs 8 % more); earlier trees had
-// both on all twenty. Neither the total disturbed nor the compacted volume was ordered, so only
-// the first two are checked, here on two units (1 and 2, where both hold).
+// At v1 = 0.5 rad/s all three stall in the pit they sank into while set down (the load-distribution
+// files say why): on seeds 1–20 (2026-12-01) no redistribution climbs 0.052–0.075 m in the 13 s, h^v
+// and h^s climb further on 18 and 20 of them (0.95–1.27 and 1.02–1.37 of it; on average 0.070 and
+// 0.074 m against 0.064 m), "more powerful" as the thesis found. They disturb more soil in all (on
+// average 0.0135 against 0.0117 m³), and per metre climbed less on only 6 and 8 of the 20 (on
+// average 0.194 and 0.184 against 0.184 m³/m): the "less erosion" of chapter 6.3 is not what this
+// soil gives, and is not checked. The climb is compared averaged over units 1–8, where one unit's
+// three runs differ by about as much as one unit from another (h^v and h^s ahead by 11 % and 17 %).
+// (Until soil laid back in a rut lay loose there, 2026-12-01, the rut's raised level propped these
+// slow climbs: 0.09–0.14 m, and both redistributions disturbed less per metre on 18–20 units.)
 double disturbed_per_metre_climbed(const ScenarioResult& r) {
   return r.metrics.at("soil_disturbed_m3") / r.metrics.at("climb.forward_distance_m");
 }
@@ -165,30 +170,37 @@ Scenario on_soft_sand(const std::string& name) {
   return scenario;
 }
 
-TEST(ShippedScenarios, OnSoftSandLoadDistributionClimbsFurtherAndErodesLessPerMetre) {
+TEST(ShippedScenarios, OnSoftSandLoadDistributionClimbsFurther) {
   const Params params = keeps_trying();
-  for (const std::uint64_t seed : {1u, 2u}) {
+  constexpr int kUnits = 8;
+  std::map<std::string, double> mean_climb_m;
+  for (std::uint64_t seed = 1; seed <= kUnits; ++seed) {
     RunOptions options;
     options.plots = false;
     options.seed = seed;
-    const ScenarioResult off = run_scenario(on_soft_sand("load-distribution-off"), params, options);
-    ASSERT_GT(off.metrics.at("climb.forward_distance_m"), 0.0) << report(off);
-    for (const char* variant : {"load-distribution-v", "load-distribution-s"}) {
+    for (const char* variant :
+         {"load-distribution-off", "load-distribution-v", "load-distribution-s"}) {
       const ScenarioResult r = run_scenario(on_soft_sand(variant), params, options);
-      EXPECT_GT(r.metrics.at("climb.forward_distance_m"),
-                off.metrics.at("climb.forward_distance_m"))
-          << variant << " seed " << seed << "\n" << report(r) << report(off);
-      EXPECT_LT(disturbed_per_metre_climbed(r), disturbed_per_metre_climbed(off))
-          << variant << " seed " << seed << "\n" << report(r) << report(off);
+      ASSERT_GT(r.metrics.at("climb.forward_distance_m"), 0.0) << report(r);
+      mean_climb_m[variant] += r.metrics.at("climb.forward_distance_m") / kUnits;
     }
+  }
+  for (const char* variant : {"load-distribution-v", "load-distribution-s"}) {
+    EXPECT_GT(mean_climb_m[variant], mean_climb_m["load-distribution-off"]) << variant;
   }
 }
 
-// Driving against rolking (chapter 5.3) up the same 12° slope of soft sand for 27 s, v1 = 1 rad/s
-// against rolking at full gait speed. On seeds 1–20 driving climbs further (20 of 20: 0.39–0.48 m
-// against 0.02–0.10 m) and disturbs less soil per metre climbed (20 of 20), though more in all
-// (20 of 20: its six wheels slip through the sand the whole time, rolking's mostly stand); so the
-// thesis' wheel walking does not out-climb driving on this slope in our physics (RELIABILITY.md).
+// Driving against rolking (chapter 5.3) up a slope of soft sand for 27 s, v1 = 1 rad/s against
+// rolking at full gait speed ("we compared different wheel walking modes with plain driving when
+// moving uphill on sand: wheel walking caused significantly less erosion", Field Experiment 6.6).
+// On 8°, which both climb (the slope sweep's windowed steepest on unit 1: driving 12.5°, rolking
+// 11.0°), on seeds 1–4 (2026-12-01) driving climbs 2.44–2.57 m and rolking 0.13–0.15 m; driving
+// disturbs 4 times as much soil in all (0.021 against 0.005 m³: its six wheels slip through the
+// sand the whole time, rolking's mostly stand) and a quarter as much per metre climbed (0.008
+// against 0.038 m³/m). So wheel walking erodes less in all, as the thesis found, but not per metre
+// and it does not out-climb driving here. (Until soil laid back in a rut lay loose there,
+// 2026-12-01, this ran on 12°, where rolking then climbed 0.02–0.10 m on the rut's raised level;
+// now it slides back 0.2–1.5 cm there.)
 Scenario soft_sand_climb(const std::string& name, const std::string& targets) {
   const ScratchFolder folder;
   return load_scenario(folder.write(name + ".toml", R"(
@@ -196,7 +208,7 @@ name = ")" + name + R"("
 duration_s = 30.0
 [terrain]
 kind = "slope"
-slope_deg = 12.0
+slope_deg = 8.0
 material = "sand"
 [sim]
 supply = "battery"

@@ -94,8 +94,12 @@ TEST(ScenarioRunner, OnSoftSoilReportsTheGridsMetrics) {
   EXPECT_GT(m.at("soil_disturbed_m3"), 0.0);
   EXPECT_GT(m.at("final_center_rut_depth_m"), 0.005);  // Bekker's static sinkage is 1–3 cm
   EXPECT_GT(m.at("final_exterior_rut_depth_m"), 0.005);
-  // Driving, no wheel digs a trench of its own: the exterior ruts within 1 cm of the centre ones.
-  EXPECT_LT(std::abs(m.at("final_trench_depth_m")), 0.01);
+  // Driving, no wheel digs a trench of its own (m3's, where the exterior ruts go deeper): the
+  // centre wheels, which carry the centre unit, sink deepest. Bekker's static sinkage goes as
+  // the load to the power 2/(2n + 1) = 0.625; for a centre wheel's ≈ 220 N against an exterior
+  // one's ≈ 90 N the exterior ruts are 0.57 as deep (measured: 1.46 against 2.54 cm, 0.58).
+  EXPECT_LT(m.at("final_trench_depth_m"), 0.0);
+  EXPECT_NEAR(m.at("final_exterior_rut_depth_m") / m.at("final_center_rut_depth_m"), 0.57, 0.1);
 }
 
 TEST(ScenarioRunner, ReportsTheRunsAndEachPhasesMetrics) {

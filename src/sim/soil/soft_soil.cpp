@@ -15,6 +15,11 @@ namespace {
 // Repose relaxation around a wheel: this many cells beyond its box, at most this many passes.
 constexpr int kRelaxMarginCells = 3;
 constexpr int kRelaxPasses = 4;
+// Beyond the cells a wheel's spoil landed on, at least this many cells, and as many as a slope at
+// the angle of repose from the pile's top down to the ground spans (at most kSpoilReachCells): a
+// pile must be free to spread to its foot, or the window's edge stands as a wall around it.
+constexpr int kSpoilMarginCells = 6;
+constexpr int kSpoilReachCells = 40;
 // The exit angle's search: steps over [−θ1, 0], and how far above its bowl a rim still touches at
 // least (exit_touch_m below).
 constexpr int kExitSteps = 16;
@@ -298,9 +303,25 @@ void SoftSoil::deform(std::size_t wheel, const WheelKinematics& kinematics, doub
     landed = grid_.excavate(footprint_, cylinder, direction * forward,
                             geometry.rim_radius_m + grid_.spec().cell_m, excavated_m3);
   }
-  // The repose over the patch and where its spoil landed: a short patch leaves the landing row
-  // outside its own margin, and spoil never spread would stand there as a wall.
-  grid_.relax(footprint_.box().united(landed), kRelaxMarginCells, kRelaxPasses);
+  // The repose over the patch and where its spoil landed, each with its margin: a short patch
+  // leaves the landing row outside its own margin, and spoil never spread would stand there as a
+  // wall. The cells under the rim hold still: soil neither slides from under the wheel nor into
+  // the rut it stands in.
+  int spoil_margin = kSpoilMarginCells;
+  if (!landed.empty()) {
+    double pile_m = 0.0;  // the highest landing cell above the ground's initial level
+    for (int iy = landed.min_y; iy <= landed.max_y; ++iy) {
+      for (int ix = landed.min_x; ix <= landed.max_x; ++ix) {
+        pile_m = std::max(pile_m, grid_.cell_surface_m(ix, iy) - grid_.cell_initial_m(ix, iy));
+      }
+    }
+    const double foot_cells = pile_m / (grid_.spec().cell_m * std::tan(soil_.repose_angle_rad));
+    spoil_margin = std::clamp(static_cast<int>(std::ceil(foot_cells)) + 1, kSpoilMarginCells,
+                              kSpoilReachCells);
+  }
+  const CellBox around =
+      footprint_.box().grown(kRelaxMarginCells).united(landed.grown(spoil_margin));
+  grid_.relax(around, 0, kRelaxPasses, &footprint_);
 }
 
 }  // namespace marsokhod::sim::soil

@@ -27,6 +27,16 @@ class Underside {
         horizontal_(wheel.axle[0] * wheel.axle[0] + wheel.axle[1] * wheel.axle[1]),
         radius2_(wheel.radius_m * wheel.radius_m) {}
 
+  // Whether the vertical line through (x, y) meets the cylinder within `reach_m` of its axle.
+  bool covers(double x_m, double y_m, double reach_m) const {
+    const double ax = wheel_.axle[0], ay = wheel_.axle[1];
+    if (horizontal_ < 1e-12) return false;
+    const double dx = x_m - wheel_.center_m[0], dy = y_m - wheel_.center_m[1];
+    const double along = (dx * ax + dy * ay) / horizontal_;
+    if (std::abs(along) > 0.5 * wheel_.width_m) return false;
+    const double ex = dx - along * ax, ey = dy - along * ay;
+    return ex * ex + ey * ey < reach_m * reach_m;
+  }
   // +∞ also where the underside certainly lies more than a nanometre above `level_m` (no square
   // root for the cells the rim cannot reach).
   double height_above_m(double x_m, double y_m, double level_m) const {
@@ -78,6 +88,9 @@ SoilGrid::SoilGrid(GridSpec spec, SoilParams soil,
   initial_.resize(count);
   sinkage_.resize(count);
   compaction_.resize(count);
+  loose_.resize(count);
+  above_.resize(count);
+  held_.assign(count, 0);
   for (int iy = 0; iy < spec_.cells_y; ++iy) {
     for (int ix = 0; ix < spec_.cells_x; ++ix) {
       start_cell(index(ix, iy), initial_level_m(ix, iy, spec_.origin_x_m, spec_.origin_y_m));
@@ -106,6 +119,8 @@ void SoilGrid::start_cell(std::size_t i, double level) {
   initial_[i] = level;
   sinkage_[i] = 0.0;
   compaction_[i] = 0.0;
+  loose_[i] = 0.0;
+  above_[i] = 0.0;
 }
 
 // The levels of the cells taken in come first (a surface that is not finite there leaves the
@@ -158,6 +173,8 @@ void SoilGrid::shift(int dx_cells, int dy_cells) {
         initial_[i] = initial_[from];
         sinkage_[i] = sinkage_[from];
         compaction_[i] = compaction_[from];
+        loose_[i] = loose_[from];
+        above_[i] = above_[from];
       }
     }
   }
@@ -180,8 +197,13 @@ double SoilGrid::touch_tolerance_m(double x_m, double y_m) const {
 
 Vec3 SoilGrid::normal(double x_m, double y_m, double span_m) const {
   const double h = 0.5 * std::max(span_m, spec_.cell_m);
-  const double slope_x = (undisturbed_m(x_m + h, y_m) - undisturbed_m(x_m - h, y_m)) / (2.0 * h);
-  const double slope_y = (undisturbed_m(x_m, y_m + h) - undisturbed_m(x_m, y_m - h)) / (2.0 * h);
+  // The ground's level, without the loose soil piled above it: the banks a wheel pushed up beside
+  // its rut do not tilt its frame.
+  const auto level = [&](double x, double y) {
+    return bilinear(surface_, &sinkage_, x, y, &above_);
+  };
+  const double slope_x = (level(x_m + h, y_m) - level(x_m - h, y_m)) / (2.0 * h);
+  const double slope_y = (level(x_m, y_m + h) - level(x_m, y_m - h)) / (2.0 * h);
   const Vec3 up{-slope_x, -slope_y, 1.0};
   return (1.0 / norm(up)) * up;
 }
@@ -217,8 +239,7 @@ void SoilGrid::spread(const std::vector<int>& cells, double volume_m3) {
   const double depth =
       volume_m3 / (static_cast<double>(cells.size()) * spec_.cell_m * spec_.cell_m);
   for (int cell : cells) {
-    surface_[static_cast<std::size_t>(cell)] += depth;
-    note_laid(static_cast<std::size_t>(cell));
+    lay(static_cast<std::size_t>(cell), depth);
     mark_changed_cell(static_cast<std::size_t>(cell));
   }
   volumes_.fill_m3 += volume_m3;
@@ -228,6 +249,8 @@ void SoilGrid::level() {
   surface_ = initial_;
   std::fill(sinkage_.begin(), sinkage_.end(), 0.0);
   std::fill(compaction_.begin(), compaction_.end(), 0.0);
+  std::fill(loose_.begin(), loose_.end(), 0.0);
+  std::fill(above_.begin(), above_.end(), 0.0);
   volumes_ = SoilVolumes{};
   behind_earthwork_ = Earthwork{};
   behind_compacted_area_m2_ = 0.0;
@@ -289,6 +312,7 @@ Footprint SoilGrid::press(const Cylinder& wheel) {
 
 void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
   footprint.contact_cells.clear();
+  footprint.covered_cells.clear();
   const auto cell_of = [&](double coordinate, double origin, int cells) {
     return std::clamp(static_cast<int>(std::floor((coordinate - origin) / spec_.cell_m)), 0,
                       cells - 1);
@@ -320,8 +344,10 @@ void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
   }
   const double gap = wheel.center_m[2] - std::abs(wheel.axle[2]) * 0.5 * wheel.width_m - top -
                      1e-9;
+  double reach = wheel.radius_m;
   if (gap > 0.0) {
-    shadow(std::sqrt(std::max(wheel.radius_m * wheel.radius_m - gap * gap, 0.0)) + 1e-9);
+    reach = std::sqrt(std::max(wheel.radius_m * wheel.radius_m - gap * gap, 0.0)) + 1e-9;
+    shadow(reach);
   }
   const int box_x = min_x - 1, box_y = min_y - 1;  // the contact bit map's corner
   const int width = max_x - min_x + 3, height = max_y - min_y + 3;
@@ -337,6 +363,9 @@ void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
   for (int iy = min_y; iy <= max_y; ++iy) {
     for (int ix = min_x; ix <= max_x; ++ix) {
       const std::size_t i = index(ix, iy);
+      if (underside.covers(cell_x_m(ix), cell_y_m(iy), reach)) {
+        footprint.covered_cells.push_back(static_cast<int>(i));
+      }
       // A rim above the highest level at which this cell still carries it is a miss as before.
       const double rim = underside.height_above_m(
           cell_x_m(ix), cell_y_m(iy),
@@ -360,6 +389,10 @@ void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
       surface_[i] = rim;
       cut_any = true;
       sinkage_[i] += cut;
+      // Pressed, the loose soil becomes ground: in a rut as deep as the cut; all of it where soil
+      // lay above the undisturbed level, which the press then starts from.
+      loose_[i] = above_[i] > 0.0 ? 0.0 : loose_[i] - std::min(loose_[i], cut);
+      above_[i] = 0.0;
       compaction_[i] += (1.0 - soil_.displaced_fraction) * cut;
       volumes_.cut_m3 += cut * area;
       volumes_.compacted_m3 += (1.0 - soil_.displaced_fraction) * cut * area;
@@ -447,7 +480,7 @@ CellBox SoilGrid::excavate(const Footprint& footprint, const Cylinder& wheel, co
   if (targets.empty()) return {};  // it would land off the grid: keep the soil where it is
   const double depth = volume_m3 / (static_cast<double>(footprint.contact_cells.size()) *
                                     spec_.cell_m * spec_.cell_m);
-  for (int cell : footprint.contact_cells) surface_[static_cast<std::size_t>(cell)] -= depth;
+  for (int cell : footprint.contact_cells) take(static_cast<std::size_t>(cell), depth);
   mark_changed(footprint.min_x, footprint.min_y, footprint.max_x, footprint.max_y);
   volumes_.cut_m3 += volume_m3;
   volumes_.excavated_m3 += volume_m3;
@@ -468,9 +501,8 @@ void SoilGrid::move_downhill(std::size_t first, std::size_t second, double diffe
   const double moved = 0.5 * (std::abs(difference) - limit_m);
   const std::size_t higher = difference > 0.0 ? first : second;
   const std::size_t lower = difference > 0.0 ? second : first;
-  surface_[higher] -= moved;
-  surface_[lower] += moved;
-  note_laid(lower);
+  take(higher, moved);
+  lay(lower, moved);
   const double volume = moved * spec_.cell_m * spec_.cell_m;
   volumes_.cut_m3 += volume;
   volumes_.fill_m3 += volume;
@@ -481,8 +513,18 @@ void SoilGrid::relax(const Footprint& footprint, int margin_cells, int passes) {
   relax(footprint.box(), margin_cells, passes);
 }
 
-void SoilGrid::relax(const CellBox& box, int margin_cells, int passes) {
+void SoilGrid::relax(const CellBox& box, int margin_cells, int passes, const Footprint* held) {
   if (box.empty()) return;
+  if (held != nullptr) {
+    for (int cell : held->covered_cells) held_[static_cast<std::size_t>(cell)] = 1;
+  }
+  relax_box(box, margin_cells, passes);
+  if (held != nullptr) {
+    for (int cell : held->covered_cells) held_[static_cast<std::size_t>(cell)] = 0;
+  }
+}
+
+void SoilGrid::relax_box(const CellBox& box, int margin_cells, int passes) {
   const int x0 = std::max(box.min_x - margin_cells, 0);
   const int x1 = std::min(box.max_x + margin_cells, spec_.cells_x - 1);
   const int y0 = std::max(box.min_y - margin_cells, 0);

@@ -2,9 +2,22 @@
 // cells of side cell_m, each with
 //   surface_m      the soil's current level (world z),
 //   sinkage_m      the plastic sinkage: how deep rims have pressed the cell down in all,
-//   compaction_m   the part of that sinkage by which the soil was compacted in place.
+//   compaction_m   the part of that sinkage by which the soil was compacted in place,
+//   loose_m        the loose soil lying in the cell's rut, laid there after it was pressed,
+//   above_m        the loose soil laid on it above its undisturbed level (a bank; sinkage_m is 0).
 // surface_m + sinkage_m is the undisturbed level from which Bekker's sinkage z is measured, so a
-// wheel resting in its own rut is carried as at the moment it pressed it.
+// wheel resting in its own rut is carried as at the moment it pressed it. That level less above_m
+// is the ground's, whose slope orients a wheel's frame (normal): the banks a wheel pushes up
+// beside its rut do not tilt it.
+//
+// Loose soil (lay, take): soil laid on a cell (the rim's share of a press, spoil, a slide) first
+// fills its rut: that height moves from sinkage_m to loose_m, so the undisturbed level stays the
+// ground's (soil sliding back into a rut is loose soil in it, not pressed ground raised); what
+// rises above the undisturbed level raises it, as a pile on unpressed ground does (above_m). Soil
+// is taken from a cell's top (excavated, slid off): the pile above first, lowering the level with
+// it, then the rut's loose soil, which gives its depth back to the sinkage, then the ground. A
+// press that cuts a cell presses its loose soil with the rest (where soil lay above the
+// undisturbed level, all of it: the level the press starts from).
 //
 // Contact (press): a cell touches the rim while the rim is no higher above it than its elastic
 // rebound, sinkage_m / unloading_stiffness_ratio (0.1 mm at least).
@@ -14,7 +27,9 @@
 // Excavation (excavate): a volume taken evenly from the contact cells and dropped behind the wheel.
 // Repose (relax): neighbours (x then y, in raster order) whose heights differ by more than
 // cell_m·tan(repose angle) move soil from the higher to the lower until they differ by exactly that
-// — Gauss–Seidel passes within a window. Every loop runs in a fixed order: bit-for-bit repeatable.
+// — Gauss–Seidel passes within a window —, but not into or out of the cells a wheel covers (held):
+// soil cannot slide into the space under a wheel, nor from under its rim. Every loop runs in a
+// fixed order: bit-for-bit repeatable.
 //
 // Bookkeeping: cut_m3 counts every volume taken from a cell, fill_m3 every volume added, so
 //   Σ(surface − initial surface)·cell² = fill − cut,   cut − fill = compacted_m3,
@@ -77,6 +92,11 @@ struct Cylinder {
 struct CellBox {
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;
   bool empty() const { return max_x < min_x || max_y < min_y; }
+  // The box grown by n cells each way (empty stays empty; the grid clips it where used).
+  CellBox grown(int n) const {
+    if (empty()) return *this;
+    return {min_x - n, min_y - n, max_x + n, max_y + n};
+  }
   // The smallest box holding both (either may be empty).
   CellBox united(const CellBox& other) const {
     if (other.empty()) return *this;
@@ -90,6 +110,9 @@ struct CellBox {
 struct Footprint {
   std::vector<int> contact_cells;                    // cell indices, ascending
   int min_x = 0, min_y = 0, max_x = -1, max_y = -1;  // their box (empty: max < min)
+  // The cells under the part of the wheel that reaches down near the soil (the contact cells and
+  // those under the rim's arc just clear of it), ascending.
+  std::vector<int> covered_cells;
   CellBox box() const { return {min_x, min_y, max_x, max_y}; }
 };
 
@@ -120,6 +143,7 @@ class SoilGrid {
   const double* cell_surfaces_m() const { return surface_.data(); }
   double cell_sinkage_m(int ix, int iy) const { return sinkage_[index(ix, iy)]; }
   double cell_compaction_m(int ix, int iy) const { return compaction_[index(ix, iy)]; }
+  double cell_loose_m(int ix, int iy) const { return loose_[index(ix, iy)]; }
   double cell_initial_m(int ix, int iy) const { return initial_[index(ix, iy)]; }
   void set_cell_surface_m(int ix, int iy, double level_m);  // for tests and scenario set-up
   // Raked level: every cell back at its initial surface, no sinkage or compaction, the books at 0
@@ -138,12 +162,12 @@ class SoilGrid {
   double deepest_m() const;
   // The most any cell's plastic sinkage has exceeded its depth below its initial surface since
   // construction or level(): sinkage_m − max(0, initial − surface), taken whenever soil is laid
-  // on a cell. A press alone leaves it at 0 (its cut adds as much to both); soil laid on a pressed
-  // cell raises it by the height laid, because the level Bekker's z is measured from (surface +
-  // sinkage) rises with that loose soil as if it were pressed ground, and pressing it again keeps
-  // it there. It stays 0 where no soil slid back onto pressed ground; under a spinning or
-  // slipping wheel, whose rut keeps taking soil back, it grows without bound: the known defect of
-  // docs/simulator.md, "The undisturbed level in a rut" (5–14 cm in the shipped sand scenarios).
+  // on a cell. A press of unpressed ground leaves it at 0 (its cut adds as much to both), and so
+  // does soil laid in a rut (it takes from the sinkage what it adds to the surface); a bank that
+  // a wheel then presses, whose undisturbed level is its top, raises it by at most the bank's
+  // height (0.7–1.8 cm in the 12° load-distribution climbs on soft sand). (Before loose soil was
+  // kept apart, 2026-12-01, soil sliding back into a rut raised that level as if it were pressed
+  // ground, without bound: 5–14 cm in the shipped sand scenarios, docs/simulator.md.)
   double max_sinkage_excess_m() const { return max_sinkage_excess_m_; }
   // The area of the cells compacted in place (compaction_m > 0), in the window and left behind:
   // compacted_m3 over it is the mean compaction of the ground the wheels pressed.
@@ -168,7 +192,9 @@ class SoilGrid {
   // Relaxes slopes steeper than the angle of repose in the footprint's box (or a box) grown by
   // margin cells.
   void relax(const Footprint& footprint, int margin_cells, int passes);
-  void relax(const CellBox& box, int margin_cells, int passes);
+  // With `held`, no soil moves into or out of its covered cells: soil cannot slide into the space
+  // under a wheel, nor out from under its rim.
+  void relax(const CellBox& box, int margin_cells, int passes, const Footprint* held = nullptr);
 
  private:
   std::size_t index(int ix, int iy) const {
@@ -178,20 +204,41 @@ class SoilGrid {
   double cell_x_m(int ix) const { return spec_.origin_x_m + (ix + 0.5) * spec_.cell_m; }
   double cell_y_m(int iy) const { return spec_.origin_y_m + (iy + 0.5) * spec_.cell_m; }
   double bilinear(const std::vector<double>& field, const std::vector<double>* added, double x_m,
-                  double y_m) const;
+                  double y_m, const std::vector<double>* taken = nullptr) const;
   void spread(const std::vector<int>& cells, double volume_m3);
   void collect_rim(const Footprint& footprint, int box_x, int box_y, int width, int words);
+  void relax_box(const CellBox& box, int margin_cells, int passes);
   bool relax_pair(std::size_t first, std::size_t second, double limit_m) {
+    if ((held_[first] | held_[second]) != 0) return false;
     const double difference = surface_[first] - surface_[second];
     if (std::abs(difference) <= limit_m) return false;
     move_downhill(first, second, difference, limit_m);
     return true;
   }
   void move_downhill(std::size_t first, std::size_t second, double difference, double limit_m);
-  // After soil was laid on cell i.
-  void note_laid(std::size_t i) {
+  // Lays h of loose soil on cell i: as much of it as fills the cell's rut (its plastic sinkage)
+  // is loose soil in the rut, which takes that much from the sinkage, so the undisturbed level
+  // (surface + sinkage) stays where the rut was pressed from; the rest raises that level as a
+  // pile on undisturbed ground.
+  void lay(std::size_t i, double h) {
+    surface_[i] += h;
+    const double filled = std::min(sinkage_[i], h);
+    sinkage_[i] -= filled;
+    loose_[i] += filled;
+    above_[i] += h - filled;
     const double excess = sinkage_[i] - std::max(0.0, initial_[i] - surface_[i]);
     max_sinkage_excess_m_ = std::max(max_sinkage_excess_m_, excess);
+  }
+  // Takes h from the top of cell i: soil laid above its undisturbed level first (which lowers
+  // that level with it), then its rut's loose soil, which gives its depth back to the sinkage,
+  // then the ground.
+  void take(std::size_t i, double h) {
+    surface_[i] -= h;
+    const double from_above = std::min(above_[i], h);
+    above_[i] -= from_above;
+    const double back = std::min(loose_[i], h - from_above);
+    sinkage_[i] += back;
+    loose_[i] -= back;
   }
   void mark_changed(int min_x, int min_y, int max_x, int max_y);
   void mark_changed_cell(std::size_t cell);
@@ -204,6 +251,11 @@ class SoilGrid {
   SoilParams soil_;
   std::function<double(double, double)> initial_surface_m_;
   std::vector<double> surface_, sinkage_, compaction_, initial_;
+  // The loose soil lying in each cell's rut (laid there after it was pressed), and the soil laid
+  // on it above its undisturbed level (there the sinkage is 0), m.
+  std::vector<double> loose_, above_;
+  // The cells relax() may not move soil into or out of (1), else 0.
+  std::vector<std::uint8_t> held_;
   // What the cells the window left behind held (shift): their earthwork, compacted area and
   // deepest cut.
   Earthwork behind_earthwork_;
@@ -222,8 +274,8 @@ class SoilGrid {
 };
 
 inline double SoilGrid::bilinear(const std::vector<double>& field,
-                                 const std::vector<double>* added, double x_m,
-                                 double y_m) const {
+                                 const std::vector<double>* added, double x_m, double y_m,
+                                 const std::vector<double>* taken) const {
   const auto axis = [](double coordinate, int cells, int& low, int& high) {
     const double clamped = std::clamp(coordinate, 0.0, cells - 1.0);
     low = std::min(static_cast<int>(clamped), cells - 2);
@@ -235,7 +287,8 @@ inline double SoilGrid::bilinear(const std::vector<double>& field,
   const double wy = axis((y_m - spec_.origin_y_m) / spec_.cell_m - 0.5, spec_.cells_y, y0, y1);
   const auto at = [&](int ix, int iy) {
     const std::size_t i = index(ix, iy);
-    return field[i] + (added != nullptr ? (*added)[i] : 0.0);
+    return field[i] + (added != nullptr ? (*added)[i] : 0.0) -
+           (taken != nullptr ? (*taken)[i] : 0.0);
   };
   return (1.0 - wy) * ((1.0 - wx) * at(x0, y0) + wx * at(x1, y0)) +
          wy * ((1.0 - wx) * at(x0, y1) + wx * at(x1, y1));

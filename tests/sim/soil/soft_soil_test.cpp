@@ -232,9 +232,10 @@ TEST(SoftSoil, TheGridYieldsOncePerPeriod) {
 }
 
 // Yielding every 10 ms rather than every step: driving with slip, the wheel sinks as deep and the
-// grid's books agree; spinning in place, the hole deepens at 0.90 of the rate (measured: 6.74
-// against 7.48 cm in 3 s at 2 rad/s; 0.95 yielding every 5 ms, 1.00 every 2 ms), the
-// excavation's soil leaving the hole in batches of 10 ms.
+// grid's books agree; spinning in place, the hole deepens as fast (5.6 cm in 3 s at 2 rad/s
+// either way). Until the cells under a rim held still (2026-12-01) it deepened at 0.90 of the
+// rate yielding every 10 ms (6.74 against 7.48 cm): between yields the repose slid the rim's soil
+// back under the wheel, and the press cut it again, more often the more often it yielded.
 TEST(SoftSoil, YieldingEvery10msAgainstYieldingEveryStep) {
   {
     SoftSoil every_step = one_wheel_on_flat_sand(0.0);
@@ -245,32 +246,65 @@ TEST(SoftSoil, YieldingEvery10msAgainstYieldingEveryStep) {
     const SoilVolumes& b = every_period.grid().volumes();
     EXPECT_NEAR(z_period, z_step, 5e-4);
     EXPECT_NEAR(b.excavated_m3 / a.excavated_m3, 1.0, 0.01);
-    EXPECT_NEAR(b.compacted_m3 / a.compacted_m3, 1.0, 0.01);
+    // As much compacted as the sinkage allows: the 0.5 mm it may differ by, (1 − f) of it
+    // compacted under the 0.15 m wide rim over the 0.51 m it travels (measured: 0.986 against
+    // 1.001 litres, the sinkage 0.3 mm apart).
+    const double f = dry_sand().displaced_fraction;
+    EXPECT_NEAR(b.compacted_m3, a.compacted_m3, (1.0 - f) * 5e-4 * 0.15 * 0.17 * 3.0);
   }
   SoftSoil every_step = one_wheel_on_flat_sand(0.0);
   SoftSoil every_period = one_wheel_on_flat_sand();
   const double dug_step = 0.115 - run_vertical_rig(every_step, 2.0, 0.0, 3.0);
   const double dug_period = 0.115 - run_vertical_rig(every_period, 2.0, 0.0, 3.0);
-  EXPECT_NEAR(dug_period / dug_step, 0.90, 0.02);
+  EXPECT_NEAR(dug_period / dug_step, 1.0, 0.02);
   EXPECT_NEAR(every_period.grid().volumes().excavated_m3 / every_step.grid().volumes().excavated_m3,
               1.0, 0.01);
 }
 
-// The blades' spoil lands one cell behind the rim; the repose reaches it there too, so it spreads
-// rather than standing as a one-cell tower (without: 0.36 m after 3 s of spinning in place;
-// yielding every 10 ms, 0.79 m at 2.75 s, before it fell into the hole and threw the wheel up 2 cm).
-TEST(SoftSoil, SpoilSpreadsBehindASpinningWheel) {
+// The blades' spoil lands one cell behind the rim. Soil slides neither from under a wheel nor
+// into the space under it (the cells it covers hold still), so a wheel spinning in place for 3 s
+// piles its spoil against its own back (8.0 cm high, above its axle), and the repose spreads it
+// backward and sideways: every pair of neighbours outside the wheel's shadow differs by no more
+// than cell·tan 28° (and the last yield's spoil), so the pile holds at least the half diamond
+// pyramid that slope leaves under its top against the wheel, h³/(3 tan² 28°): no higher than the
+// ground's fill allows. (Before the cells under the wheel held still, the spoil slid back under it
+// and stood below 3 cm; before the repose reached the landing cells, a one-cell tower of 0.36 m,
+// 0.79 m yielding every 10 ms. A pile whose foot lay beyond the repose window stood there as
+// against a wall: the window reaches as far as the pile's height at repose.)
+TEST(SoftSoil, SpoilPilesBehindASpinningWheelAtTheAngleOfRepose) {
+  const double slope = std::tan(dry_sand().repose_angle_rad);
   for (const double period : {0.0, SoftSoil::kYieldPeriodS}) {
+    SCOPED_TRACE(period);
     SoftSoil soil = one_wheel_on_flat_sand(period);
     run_vertical_rig(soil, 2.0, 0.0, 3.0);
-    double highest = 0.0;
+    const SoilGrid& grid = soil.grid();
+    const double cell = grid.spec().cell_m;
+    const auto shadowed = [&](int ix, int iy) {  // under the wheel: its centre (−0.5, 0)
+      const double x = grid.spec().origin_x_m + (ix + 0.5) * cell + 0.5;
+      const double y = grid.spec().origin_y_m + (iy + 0.5) * cell;
+      return std::abs(x) < 0.115 + cell && std::abs(y) < 0.075 + cell;
+    };
+    double highest = 0.0, steepest = 0.0;
     for (int iy = 0; iy < 60; ++iy) {
       for (int ix = 0; ix < 300; ++ix) {
-        highest = std::max(highest, soil.grid().cell_surface_m(ix, iy));
+        const double h = grid.cell_surface_m(ix, iy);
+        highest = std::max(highest, h);
+        if (shadowed(ix, iy)) continue;
+        if (ix + 1 < 300 && !shadowed(ix + 1, iy)) {
+          steepest = std::max(steepest, std::abs(h - grid.cell_surface_m(ix + 1, iy)));
+        }
+        if (iy + 1 < 60 && !shadowed(ix, iy + 1)) {
+          steepest = std::max(steepest, std::abs(h - grid.cell_surface_m(ix, iy + 1)));
+        }
       }
     }
-    EXPECT_LT(highest, 0.03) << period;
-    EXPECT_GT(highest, 0.0) << period;  // the spoil is there
+    EXPECT_GT(highest, 0.03);  // the spoil is there, against the wheel
+    // The last yield's spoil has had only that yield's passes: it may stand above the slope by
+    // as much as it raised the 15 landing cells across the wheel's 0.15 m.
+    const double batch_m = grid.volumes().excavated_m3 / 3.0 * std::max(period, kDt) /
+                           (15.0 * cell * cell);
+    EXPECT_LE(steepest, cell * slope + batch_m);
+    EXPECT_LE(highest * highest * highest, 3.0 * slope * slope * grid.earthwork().fill_m3);
   }
 }
 

@@ -107,16 +107,16 @@ TEST(SoilGrid, DepthAndCompactedAreaReadTheRut) {
   expect_balanced(grid);
 }
 
-// The grid's known defect, measured (docs/simulator.md, "The undisturbed level in a rut"): soil
-// that slides back into a pressed rut raises the level Bekker's z is measured from, surface +
-// plastic sinkage, by the height laid, and pressing the rut again to the same rim keeps it there.
-// max_sinkage_excess_m() reads it: a cell's sinkage less its depth below the initial surface. A
-// single press of virgin soil leaves that at 0 (the cut adds to both); after the slide it is, cell
-// by cell, how far the slide raised a pressed cell.
-TEST(SoilGrid, SoilLaidBackIntoAPressedRutRaisesTheUndisturbedLevel) {
+// Soil that slides back into a pressed rut lies loose on it (docs/simulator.md, "The undisturbed
+// level in a rut"): it fills the rut's sinkage, so the level Bekker's z is measured from, surface +
+// plastic sinkage, stays the ground's, and pressing or carrying it away gives the depth back. A
+// cell's sinkage therefore never exceeds its depth below the initial surface
+// (max_sinkage_excess_m() stays 0, where the grid before 2026-12-01 let it grow by the height
+// laid).
+TEST(SoilGrid, SoilLaidBackIntoAPressedRutLiesLooseOnIt) {
   SoilGrid grid(small_grid(), dry_sand(), flat);
   const Cylinder wheel{{0.0, 0.0, 0.115 - 0.02}, {0.0, 1.0, 0.0}, 0.115, 0.15};
-  grid.press(wheel);
+  const Footprint footprint = grid.press(wheel);
   EXPECT_EQ(grid.max_sinkage_excess_m(), 0.0);
   std::vector<double> pressed(static_cast<std::size_t>(100 * 60));
   for (int iy = 0; iy < 60; ++iy) {
@@ -132,10 +132,9 @@ TEST(SoilGrid, SoilLaidBackIntoAPressedRutRaisesTheUndisturbedLevel) {
   int rx = 0, ry = 0;
   for (int iy = 0; iy < 60; ++iy) {
     for (int ix = 0; ix < 100; ++ix) {
-      const double sinkage = grid.cell_sinkage_m(ix, iy);
       const double before = pressed[static_cast<std::size_t>(iy * 100 + ix)];
       const double now = grid.cell_surface_m(ix, iy);
-      if (sinkage > 0.0 && now <= 0.0 && now - before > rise) {
+      if (before < -0.005 && now <= 0.0 && now - before > rise) {
         rise = now - before;
         rx = ix;
         ry = iy;
@@ -143,22 +142,86 @@ TEST(SoilGrid, SoilLaidBackIntoAPressedRutRaisesTheUndisturbedLevel) {
     }
   }
   ASSERT_GT(rise, 0.001);  // the slide reached the rut
-  EXPECT_NEAR(grid.max_sinkage_excess_m(), rise, 1e-12);
-  // Pressed again to the same rim, that cell is cut back to where it was; its undisturbed level
-  // now lies `rise` above the ground it never rose above.
+  const double depth = -pressed[static_cast<std::size_t>(ry * 100 + rx)];
+  // The slide lies loose in the rut: the level Bekker's z is measured from stays the ground's,
+  // and the sinkage left is the depth below it.
+  EXPECT_NEAR(grid.cell_loose_m(rx, ry), rise, 1e-12);
+  EXPECT_NEAR(grid.cell_sinkage_m(rx, ry), depth - rise, 1e-12);
+  EXPECT_NEAR(grid.cell_surface_m(rx, ry) + grid.cell_sinkage_m(rx, ry), 0.0, 1e-12);
+  EXPECT_NEAR(grid.max_sinkage_excess_m(), 0.0, 1e-12);
+  // Where the slide overfilled a shallow part of the rut, the soil above the ground's level
+  // raised that level (a pile on the ground), and the rut beneath is loose soil.
+  int ox = -1, oy = -1;
+  for (int cell : footprint.contact_cells) {
+    const int ix = cell % 100, iy = cell / 100;
+    if (grid.cell_surface_m(ix, iy) > 0.001 && (ox < 0 || grid.cell_surface_m(ix, iy) <
+                                                              grid.cell_surface_m(ox, oy))) {
+      ox = ix;
+      oy = iy;
+    }
+  }
+  ASSERT_GE(ox, 0);
+  const double pile = grid.cell_surface_m(ox, oy);
+  const double filled = -pressed[static_cast<std::size_t>(oy * 100 + ox)];
+  EXPECT_EQ(grid.cell_sinkage_m(ox, oy), 0.0);
+  EXPECT_NEAR(grid.cell_loose_m(ox, oy), filled, 1e-12);
+  // Carried away again (the blades excavate half the rise from every cell of the patch), soil
+  // goes from the top: in the rut it gives its depth back to the sinkage; on the overfilled cell
+  // the pile goes first, lowering the level to the ground's, and only the rest comes from the rut.
+  const double dug = 0.5 * rise;
+  ASSERT_GT(dug, pile);
+  const double spoil = dug * kCellM * kCellM * static_cast<double>(footprint.contact_cells.size());
+  grid.excavate(footprint, wheel, {1.0, 0.0, 0.0}, 0.13, spoil);
+  EXPECT_NEAR(grid.cell_loose_m(rx, ry), rise - dug, 1e-12);
+  EXPECT_NEAR(grid.cell_sinkage_m(rx, ry), depth - rise + dug, 1e-12);
+  EXPECT_NEAR(grid.cell_sinkage_m(ox, oy), dug - pile, 1e-12);
+  EXPECT_NEAR(grid.cell_loose_m(ox, oy), filled - (dug - pile), 1e-12);
+  EXPECT_NEAR(grid.cell_surface_m(ox, oy) + grid.cell_sinkage_m(ox, oy), 0.0, 1e-12);
+  // Pressed again to the same rim, the rest is pressed: the cell is where it was, as deep.
   grid.press(wheel);
-  EXPECT_NEAR(grid.cell_surface_m(rx, ry), pressed[static_cast<std::size_t>(ry * 100 + rx)],
-              1e-12);
-  EXPECT_NEAR(grid.cell_surface_m(rx, ry) + grid.cell_sinkage_m(rx, ry) -
-                  grid.cell_initial_m(rx, ry),
-              rise, 1e-12);
-  EXPECT_GE(grid.max_sinkage_excess_m(), rise);
-  // The window leaving the rut behind keeps the run's largest excess, as it keeps the books.
-  const double excess = grid.max_sinkage_excess_m();
-  grid.shift(80, 0);
-  EXPECT_EQ(grid.max_sinkage_excess_m(), excess);
+  EXPECT_NEAR(grid.cell_surface_m(rx, ry), -depth, 1e-12);
+  EXPECT_NEAR(grid.cell_sinkage_m(rx, ry), depth, 1e-12);
+  EXPECT_NEAR(grid.cell_loose_m(rx, ry), 0.0, 1e-12);
+  EXPECT_NEAR(grid.max_sinkage_excess_m(), 0.0, 1e-12);
+  // The window keeps a cell's loose soil as it moves; the rake clears it.
+  grid.set_cell_surface_m(59, 30, 0.05);
+  grid.relax(CellBox{57, 28, 61, 32}, 3, 50);
+  int lx = 0, ly = 0;
+  for (int iy = 0; iy < 60; ++iy) {
+    for (int ix = 0; ix < 100; ++ix) {
+      if (grid.cell_loose_m(ix, iy) > grid.cell_loose_m(lx, ly)) {
+        lx = ix;
+        ly = iy;
+      }
+    }
+  }
+  const double loose = grid.cell_loose_m(lx, ly);
+  ASSERT_GT(loose, 0.001);
+  ASSERT_GE(lx, 5);
+  grid.shift(5, 0);
+  EXPECT_EQ(grid.cell_loose_m(lx - 5, ly), loose);
   grid.level();
-  EXPECT_EQ(grid.max_sinkage_excess_m(), 0.0);
+  EXPECT_EQ(grid.cell_loose_m(lx - 5, ly), 0.0);
+}
+
+// A rim standing on its contact cells holds them: relaxing with them held moves no soil into or
+// out of them, though a bank beside them slides to the angle of repose.
+TEST(SoilGrid, RelaxationLeavesTheCellsUnderARimAlone) {
+  SoilGrid grid(small_grid(), dry_sand(), flat);
+  const Cylinder wheel{{0.0, 0.0, 0.115 - 0.02}, {0.0, 1.0, 0.0}, 0.115, 0.15};
+  const Footprint footprint = grid.press(wheel);
+  std::vector<double> under;
+  for (int cell : footprint.contact_cells) {
+    under.push_back(grid.cell_surface_m(cell % 100, cell / 100));
+  }
+  grid.set_cell_surface_m(59, 30, 0.05);
+  grid.relax(CellBox{57, 28, 61, 32}, 3, 50, &footprint);
+  EXPECT_LT(grid.cell_surface_m(59, 30), 0.05 - 0.01);  // the bank slid
+  for (std::size_t k = 0; k < under.size(); ++k) {
+    const int cell = footprint.contact_cells[k];
+    EXPECT_EQ(grid.cell_surface_m(cell % 100, cell / 100), under[k]) << "cell " << cell;
+  }
+  expect_balanced(grid);
 }
 
 // The bench's rake (RoverPhysics::level_soil): after a press and an excavation, level() puts every
@@ -299,7 +362,7 @@ TEST(SoilGrid, SlopesRelaxToTheAngleOfRepose) {
 TEST(SoilGrid, SlopesBelowReposeStay) {
   const double slope = std::tan(20.0 * std::numbers::pi / 180.0);
   SoilGrid grid(small_grid(), dry_sand(), [&](double x, double) { return x * slope; });
-  Footprint window{{}, 10, 10, 90, 50};
+  Footprint window{{}, 10, 10, 90, 50, {}};
   grid.relax(window, 0, 10);
   EXPECT_EQ(grid.volumes().relaxed_m3, 0.0);
   const Vec3 normal = grid.normal(0.1, 0.0, 0.23);
