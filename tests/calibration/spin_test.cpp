@@ -177,13 +177,15 @@ TEST(SpinCalibration, OnSoftSandTheSpinTurnsSlowerAndSinks) {
 // where the start-up left them, the rover set down on the raked sand), with the inclined blades
 // (i = 0.240) and with blades across the axle (i = 0, the control case). The turning rate's peak
 // is flat (within a few per cent over τ = 0.1–0.5), so one sweep's F̂ is where that flat peak
-// falls; measured on units 1–16 at c = 0.43 m, the blades' F̂ is above the control's on every unit
-// (1.00–1.14 against 0.94–1.00, by 0.02–0.18, 0.09 on average); at c = 0.46 m on 13 of 16. So: at
-// c = 0.43 m, on each of units 1–3 the blades' F̂ is above the control's, the control's about 1,
-// and the blades' lead 0.05 or more on average (0.11 measured). The thesis' 5.3c + 0.04 is 2.3
-// there: the simulated blades lead the exterior wheels far less than Marsokhod's (docs).
-// (Until a back-driven wheel's brake was bounded at the full-duty stall torque, not at τ_stall,
-// 2026-11-30, the same units' leads at c = 0.43 m were 0.01–0.02.)
+// falls. Measured on units 1–8 at c = 0.43 m (2026-12-01): the blades' F̂ 1.24–1.29, the
+// control's 1.06–1.10, the blades ahead by 0.16–0.21 on every unit. So: on each of units 1–3 the
+// blades' F̂ is above the control's, the control's lead over even running is less than half the
+// blades' (the blades make most of it), and the blades' lead over the control 0.1 or more on
+// average. The thesis' 5.3c + 0.04 is 2.3 there: the simulated blades lead the exterior wheels
+// far less than Marsokhod's (docs). (Until soil laid in a rut lay loose there and the cells under
+// a rim held still, 2026-12-01: blades 1.00–1.14, control 0.94–1.00, on units 1–16; until a
+// back-driven wheel's brake was bounded at the full-duty stall torque, 2026-11-30, the leads at
+// c = 0.43 m were 0.01–0.02.)
 TEST(SpinCalibration, OnSoftSandTheBladesLetTheExteriorWheelsRunAheadAtThePeak) {
   double lead_sum = 0.0;
   for (const std::uint64_t unit : {1U, 2U, 3U}) {
@@ -214,11 +216,31 @@ TEST(SpinCalibration, OnSoftSandTheBladesLetTheExteriorWheelsRunAheadAtThePeak) 
       ratio[inclination > 0.0 ? 0 : 1] = point.ratio;
     }
     SCOPED_TRACE(::testing::Message() << "unit " << unit);
-    EXPECT_GT(ratio[0], ratio[1]);            // ahead with the blades
-    EXPECT_NEAR(ratio[1], 1.0, 0.08);         // about even without
+    EXPECT_GT(ratio[0], ratio[1]);  // ahead with the blades
+    EXPECT_LT(std::abs(ratio[1] - 1.0), 0.5 * (ratio[0] - 1.0));  // nearer even without
     lead_sum += ratio[0] - ratio[1];
   }
-  EXPECT_GT(lead_sum / 3.0, 0.05);
+  EXPECT_GT(lead_sum / 3.0, 0.1);
+}
+
+// Procedure 5.1 end to end on the soft sand, unit 1: Figure 5.4's shape, the exterior wheels
+// ahead of the centre ones at the peak turning rate (F̂ > 1) and further ahead the longer the
+// axle distance (a line of positive slope through the F̂), so the procedure writes F(c). Measured
+// (2026-12-01) on units 1–3: 2.28c + 0.27, 2.47c + 0.16, 2.74c + 0.02 (F̂ 1.06–1.45), about half
+// the thesis' 5.3c + 0.04; the control case, blades across the axle, 0.17–0.41 c + 0.90–0.99
+// (F̂ 1.04–1.13). (Until soil laid back in a rut lay loose there, 2026-12-01, it refused on units
+// 1–3: F̂ fell below 1 at the largest c.)
+TEST(SpinCalibration, OnSoftSandTheProcedureWritesAnFThatRisesWithC) {
+  sim::SimOptions options = battery(1);
+  options.terrain.ground = sim::sand();
+  SimBench bench(config(), options);
+  const ProcedureResult result = run_procedure(bench, "spin");
+  ASSERT_TRUE(result.accepted()) << first(result.problems);
+  const Recording& points = result.recordings[0];
+  ASSERT_EQ(points.rows.size(), spin_clearances_m().size());
+  for (const auto& row : points.rows) EXPECT_GT(row[1], 1.0) << "c = " << row[0];
+  const Params fitted = config::apply_calibration_values(kConfigFile, result.values);
+  EXPECT_GT(fitted.spin.slope_per_m, 0.0);
 }
 
 // The gyro's null rate is taken in a 1 s rest before each sweep; a rover still moving then
