@@ -29,25 +29,14 @@ class Underside {
 
   // Whether the vertical line through (x, y) meets the cylinder within `reach_m` of its axle.
   bool covers(double x_m, double y_m, double reach_m) const {
-    const double ax = wheel_.axle[0], ay = wheel_.axle[1];
-    if (horizontal_ < 1e-12) return false;
-    const double dx = x_m - wheel_.center_m[0], dy = y_m - wheel_.center_m[1];
-    const double along = (dx * ax + dy * ay) / horizontal_;
-    if (std::abs(along) > 0.5 * wheel_.width_m) return false;
-    const double ex = dx - along * ax, ey = dy - along * ay;
-    return ex * ex + ey * ey < reach_m * reach_m;
+    double along = 0.0, across2 = 0.0;
+    return project(x_m, y_m, along, across2) && across2 < reach_m * reach_m;
   }
   // +∞ also where the underside certainly lies more than a nanometre above `level_m` (no square
   // root for the cells the rim cannot reach).
   double height_above_m(double x_m, double y_m, double level_m) const {
-    const double ax = wheel_.axle[0], ay = wheel_.axle[1];
-    if (horizontal_ < 1e-12) return kMiss;
-    const double dx = x_m - wheel_.center_m[0], dy = y_m - wheel_.center_m[1];
-    const double along = (dx * ax + dy * ay) / horizontal_;
-    if (std::abs(along) > 0.5 * wheel_.width_m) return kMiss;
-    const double ex = dx - along * ax, ey = dy - along * ay;
-    const double across2 = ex * ex + ey * ey;
-    if (across2 >= radius2_) return kMiss;
+    double along = 0.0, across2 = 0.0;
+    if (!project(x_m, y_m, along, across2) || across2 >= radius2_) return kMiss;
     const double axis = wheel_.center_m[2] + along * wheel_.axle[2];
     const double clearance = axis - level_m - 1e-9;
     if (clearance > 0.0 && clearance * clearance > radius2_ - across2) return kMiss;
@@ -55,6 +44,20 @@ class Underside {
   }
 
  private:
+  // The vertical line through (x, y): its offset along the axle's horizontal projection and its
+  // squared horizontal distance from the axle's line; false where it passes beside the wheel's
+  // width (or the axle stands on its end).
+  bool project(double x_m, double y_m, double& along, double& across2) const {
+    if (horizontal_ < 1e-12) return false;
+    const double ax = wheel_.axle[0], ay = wheel_.axle[1];
+    const double dx = x_m - wheel_.center_m[0], dy = y_m - wheel_.center_m[1];
+    along = (dx * ax + dy * ay) / horizontal_;
+    if (std::abs(along) > 0.5 * wheel_.width_m) return false;
+    const double ex = dx - along * ax, ey = dy - along * ay;
+    across2 = ex * ex + ey * ey;
+    return true;
+  }
+
   const Cylinder& wheel_;
   double horizontal_, radius2_;
 };
