@@ -168,10 +168,19 @@ void Driver::take_responses(const CycleResponses& r) {
   }
   if (r.dead_man_acknowledged) startup_.on_dead_man_acknowledged();
   if (r.measurement) {
+    // Standing: every motor off, and its speed averaged over the last kStillCycles cycles (125
+    // ms) below the still speed. A wheel standing in soft sand rocks by a few encoder counts
+    // either way (up to ±0.01 rad/s, one sample in 11–15 at or above it), which one sample would
+    // take for motion; a wheel that turns on, however slowly, keeps its mean.
+    recent_velocity_radps_[recent_velocities_ % kStillCycles] = motors_.sample().velocity_radps;
+    ++recent_velocities_;
+    const std::size_t window = std::min(recent_velocities_, kStillCycles);
     bool still = true;
     for (std::size_t i = 0; i < kMotorCount; ++i) {
+      double sum = 0.0;
+      for (std::size_t k = 0; k < window; ++k) sum += recent_velocity_radps_[k][i];
       still = still && duty_[i] == 0.0 &&
-              std::abs(motors_.sample().velocity_radps[i]) < kStillSpeedRadps;
+              std::abs(sum / static_cast<double>(window)) < kStillSpeedRadps;
     }
     const bool all_zero = std::all_of(duty_.begin(), duty_.end(), [](double d) { return d == 0.0; });
     gyro_still_ = still;

@@ -96,6 +96,11 @@ class Driver {
   // The last gyro reading came while every motor was off and at rest: the rover cannot turn, and
   // the dead reckoning takes its heading as held (a zero-velocity update, update_pose).
   bool gyro_still_ = false;
+  // The motors' measured speeds over the last kStillCycles cycles (a ring): a motor stands when
+  // their mean, not one sample, is below the still speed (take_responses).
+  static constexpr std::size_t kStillCycles = 8;
+  std::array<MotorVector, kStillCycles> recent_velocity_radps_{};
+  std::size_t recent_velocities_ = 0;  // how many cycles the ring has seen
   std::uint64_t attitude_readings_ = 0;  // µ8's readings the tip-over monitor has seen
   RuntimeSettings runtime_;
   DriverStatus status_;
