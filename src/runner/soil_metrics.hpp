@@ -11,8 +11,9 @@
 //   soil_max_depth_m            the deepest point of the ground below its initial surface
 //   soil_max_sinkage_excess_m   the most a cell's plastic sinkage exceeded its depth below the
 //                               initial surface during the run (SoilGrid::max_sinkage_excess_m):
-//                               how far the level the soil's pressure is reckoned from rose with
-//                               soil laid back into pressed ruts — the grid's known defect
+//                               how far the level the soil's pressure is reckoned from rose: by
+//                               soil laid back into pressed ruts until that defect was mended
+//                               (2026-12-01); now by banks pressed after they were piled
 //   final_exterior_rut_depth_m  the mean over the four exterior wheels of the ground's depth
 //   final_center_rut_depth_m    below its initial surface under the wheel at the end (the deepest
 //                               cell centre within ±7.5 cm, half the wheel's width, of the hub in

@@ -396,6 +396,7 @@ void SoilGrid::press(const Cylinder& wheel, Footprint& footprint) {
       // lay above the undisturbed level, which the press then starts from.
       loose_[i] = above_[i] > 0.0 ? 0.0 : loose_[i] - std::min(loose_[i], cut);
       above_[i] = 0.0;
+      note_excess(i);
       compaction_[i] += (1.0 - soil_.displaced_fraction) * cut;
       volumes_.cut_m3 += cut * area;
       volumes_.compacted_m3 += (1.0 - soil_.displaced_fraction) * cut * area;

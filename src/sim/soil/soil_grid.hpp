@@ -27,9 +27,10 @@
 // Excavation (excavate): a volume taken evenly from the contact cells and dropped behind the wheel.
 // Repose (relax): neighbours (x then y, in raster order) whose heights differ by more than
 // cell_m·tan(repose angle) move soil from the higher to the lower until they differ by exactly that
-// — Gauss–Seidel passes within a window —, but not into or out of the cells a wheel covers (held):
-// soil cannot slide into the space under a wheel, nor from under its rim. Every loop runs in a
-// fixed order: bit-for-bit repeatable.
+// — Gauss–Seidel passes within a window —, but not into or out of the cells held: those the wheel
+// that is yielding covers, so soil cannot slide into the space under it, nor from under its rim.
+// (The other wheels' cells are not held: where the window reaches a trailing wheel's front, the
+// repose may slide soil there.) Every loop runs in a fixed order: bit-for-bit repeatable.
 //
 // Bookkeeping: cut_m3 counts every volume taken from a cell, fill_m3 every volume added, so
 //   Σ(surface − initial surface)·cell² = fill − cut,   cut − fill = compacted_m3,
@@ -162,12 +163,13 @@ class SoilGrid {
   double deepest_m() const;
   // The most any cell's plastic sinkage has exceeded its depth below its initial surface since
   // construction or level(): sinkage_m − max(0, initial − surface), taken whenever soil is laid
-  // on a cell. A press of unpressed ground leaves it at 0 (its cut adds as much to both), and so
-  // does soil laid in a rut (it takes from the sinkage what it adds to the surface); a bank that
-  // a wheel then presses, whose undisturbed level is its top, raises it by at most the bank's
-  // height (0.7–1.8 cm in the 12° load-distribution climbs on soft sand). (Before loose soil was
-  // kept apart, 2026-12-01, soil sliding back into a rut raised that level as if it were pressed
-  // ground, without bound: 5–14 cm in the shipped sand scenarios, docs/simulator.md.)
+  // on a cell or a press cuts it. A press of unpressed ground leaves it at 0 (its cut adds as
+  // much to both), and so does soil laid in a rut (it takes from the sinkage what it adds to the
+  // surface); a bank that a wheel then presses, whose undisturbed level is its top, raises it by
+  // the height pressed, at most the bank's (0.7–4 cm in the shipped sand scenarios on unit 1,
+  // most where turns in place press the banks they pushed up). (Before loose soil was kept apart,
+  // 2026-12-01, soil sliding back into a rut raised that level as if it were pressed ground,
+  // without bound: 5–14 cm in the shipped sand scenarios, docs/simulator.md.)
   double max_sinkage_excess_m() const { return max_sinkage_excess_m_; }
   // The area of the cells compacted in place (compaction_m > 0), in the window and left behind:
   // compacted_m3 over it is the mean compaction of the ground the wheels pressed.
@@ -226,6 +228,10 @@ class SoilGrid {
     sinkage_[i] -= filled;
     loose_[i] += filled;
     above_[i] += h - filled;
+    note_excess(i);
+  }
+  // After soil was laid on cell i or a press cut it: the largest sinkage excess so far.
+  void note_excess(std::size_t i) {
     const double excess = sinkage_[i] - std::max(0.0, initial_[i] - surface_[i]);
     max_sinkage_excess_m_ = std::max(max_sinkage_excess_m_, excess);
   }
