@@ -325,6 +325,12 @@ constexpr ParamSpec kBehaviours[] = {
     {.key = "axle_placement_hold_s", .field = field<&BehaviourParams::axle_placement_hold_s>,
      .min = 0.0, .max = 10.0, .unit = "s", .source = "chapter 6.2.3, our extension",
      .about = "the axle ρ moves stopped though driven this long: ρ → 1 − ρ (docs/decisions.md)"},
+    {.key = "slope_hold_gain_per_s", .field = field<&BehaviourParams::slope_hold_gain_per_s>,
+     .min = 0.0, .max = 100.0, .unit = "1/s", .source = "our extension (slope_hold.hpp)",
+     .about = "K: on a slope a gait's wheels get K·e more for the angle e lost downhill; 0: off"},
+    {.key = "slope_hold_max_rad", .field = field<&BehaviourParams::slope_hold_max_rad>,
+     .min = 0.0, .max = 1.0, .unit = "rad", .source = "our extension (slope_hold.hpp)",
+     .about = "E: the lost angle the slope hold counts at most (K·E: the most it asks)"},
 };
 
 constexpr ParamSpec kSafety[] = {

@@ -214,6 +214,10 @@ struct BehaviourParams {
   double axle_placement_speed_radps = 0.1; // joint slower than this: switch ρ → 1 − ρ at once
   double axle_placement_rate_per_s = 1.0;  // faster: move ρ toward 1 − ρ at this rate
   double axle_placement_hold_s = 0.5;      // the axle ρ moves stopped this long: ρ → 1 − ρ
+  // The slope hold (slope_hold.hpp): K·e added to a gait's wheels for the angle e [rad] lost
+  // downhill, e ≤ E. K = 0: off.
+  double slope_hold_gain_per_s = 10.0;     // K
+  double slope_hold_max_rad = 0.1;         // E
 };
 
 // Chapter 3.2's rules for duty cycles, Field Experiment 6.7 and chapter 3.3's dead man's switch.
