@@ -492,6 +492,10 @@ void Driver::update_failsafes(double period_s) {
   estimation::StuckInput in;
   in.period_s = period_s;
   pair(kCenterLeft, kCenterRight, in.no_load_radps, in.velocity_radps);
+  // The centre wheels' ν without the slope hold's term: the hold pulls a gait's anchor back to
+  // where the plan left it, and an anchor held still is not a stalled drive (slope_hold.hpp).
+  const MotorVector planned = motion_.planned_no_load_velocity();
+  in.no_load_radps = {planned[kCenterLeft], planned[kCenterRight]};
   in.yaw_rate_radps = status_.yaw_rate_radps;
   in.driving = status_.mode == DriverMode::kDriving;  // the mode of the cycle before
   in.motion_asked = targets_.v1_radps != 0.0 || targets_.v2_radps != 0.0 ||

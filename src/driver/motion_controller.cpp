@@ -74,6 +74,7 @@ MotionController::MotionController(const Params& params)
       load_gains_(&adaptation::select_load_gains(params.load_gains, params.cycle.icr)),
       backlash_(params.motors),
       estimator_(driver_estimator(params)),
+      plan_estimator_(driver_estimator(params)),
       joints_(joint_bounds_with_backlash_margin(params.joints, params.motors)),
       joint_dead_time_s_(joint_dead_time_s(params)),
       run_on_s_(params.safety.dead_man_dog > 0
@@ -87,10 +88,15 @@ void MotionController::reset_joint_positions(const MotorVector& position_rad) {
   backlash_.reset(position_rad);
   joint_velocity_ = {};
   estimator_ = driver_estimator(*params_);
+  plan_estimator_ = driver_estimator(*params_);
+  slope_hold_.reset();
+  hold_radps_ = {};
 }
 
 void MotionController::observe(const MotionInput& input, DriverStatus& status) {
   joint_velocity_ = {};  // not driving: the joints' command starts again from rest
+  slope_hold_.reset();
+  hold_radps_ = {};
   track(input, status);
 }
 
@@ -98,6 +104,7 @@ void MotionController::track(const MotionInput& input, DriverStatus& status) {
   backlash_.update(input.shaft_position_rad, input.shaft_velocity_radps);
   const MotorVector w = backlash_.joint_velocity_radps();
   const MotorVector p = backlash_.joint_position_rad();
+  velocity_ = w;
   // (4.4) one cycle late (driver_estimator): the history of the commands sent is all it needs.
   const MotorVector nu = estimator_.no_load_velocity_radps();
   load_ = adaptation::load(w, nu);
@@ -158,6 +165,7 @@ MotionController::JointCommands MotionController::joint_commands(const MotionInp
   status.gait_state = gait.state_index;
   status.gait_speed = input.targets.gait_speed;
   JointCommands out;
+  gait_running_ = gait.active;
   if (gait.active) {
     out.front_radps = gait.front_command_radps;
     out.rear_radps = gait.rear_command_radps;
@@ -388,9 +396,15 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   // Remark 5.5, then the motions of (5.4).
   intent_ = mobility::driving_intent(intent_, input.targets.v1_radps);
   const MotorVector driving = ramp_driving(input, settings, status);
+  gait_running_ = false;  // joint_commands says whether a gait runs
   const JointCommands joints =
       input.stopping ? stopping_joint_commands() : joint_commands(input, settings, status);
   const MotorVector walking = walking_motion(joints, bounds, input, settings, status);
+  // The slope hold on the angle the gait's wheels lost downhill against the plan (its ν̂ from
+  // the commands less the hold's own term).
+  hold_radps_ = slope_hold_.update(velocity_, plan_estimator_.no_load_velocity_radps(),
+                                   status.slope_rad, gait_running_ && !input.stopping,
+                                   input.period_s, params_->behaviours);
   const bool at_rest_stopping = input.stopping && at_rest();
   const MotorVector h_load =
       input.stopping ? MotorVector{}
@@ -407,7 +421,8 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
         params_->motors.scale, max_duty, curve_, input.supply_v, params_->motors.nominal_supply_v);
     Plan p{mobility::sum_motions(driving, walking, limit), {}};
     for (std::size_t i = 0; i < kMotorCount; ++i) {
-      p.w_hat[i] = std::clamp(p.sum.velocities_radps[i] + h_load[i], -limit[i], limit[i]);
+      p.w_hat[i] = std::clamp(p.sum.velocities_radps[i] + h_load[i] + hold_radps_[i], -limit[i],
+                              limit[i]);
     }
     return p;
   };
@@ -441,6 +456,8 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
     joint_velocity_ = {};
     for (MotorStatus& m : status.motors) m.commanded_radps = 0.0;
     status.commands = {};
+    slope_hold_.reset();
+    hold_radps_ = {};
     return MotorVector{};
   }
   for (std::size_t i = 0; i < kMotorCount; ++i) status.motors[i].commanded_radps = p.w_hat[i];
@@ -470,6 +487,9 @@ void MotionController::record_sent(const MotorVector& duty, double supply_v) {
                                             params_->motors.nominal_supply_v);
   }
   estimator_.push(w_hat);
+  MotorVector planned{};
+  for (std::size_t i = 0; i < kMotorCount; ++i) planned[i] = w_hat[i] - hold_radps_[i];
+  plan_estimator_.push(planned);
   last_duty_ = duty;
 }
 

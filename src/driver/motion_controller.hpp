@@ -5,7 +5,7 @@
 //   4. behaviours (chapter 6): D (6.3), slope σ and joint bounds (6.4), contract on turn,
 //      axle placement, load distribution h
 //   5. (4.14) ramps v1…v4 (v3: m3); (4.16) or a gait's (4.15) moves the joints; ϱ and ρ (Remark 5.5)
-//   6. summation (5.4) with κ under (5.5); + h; (4.3) inverse → duty cycles
+//   6. summation (5.4) with κ under (5.5); + h; + the slope hold; (4.3) inverse → duty cycles
 // The duty-cycle rules (slew limit, drv at pwm ≈ 0) and the CAN encoding come after, in Driver.
 #pragma once
 
@@ -17,6 +17,7 @@
 #include "core/behaviour/axle_placement.hpp"
 #include "core/behaviour/power_management.hpp"
 #include "core/behaviour/slant_response.hpp"
+#include "core/behaviour/slope_hold.hpp"
 #include "core/behaviour/slope_estimate.hpp"
 #include "core/behaviour/switches.hpp"
 #include "core/mobility/axle_placement.hpp"
@@ -55,6 +56,11 @@ class MotionController {
   void reset_joint_positions(const MotorVector& position_rad);
   // p of (4.1) for the eight motors, as the last cycle left it.
   MotorVector joint_positions() const { return backlash_.joint_position_rad(); }
+  // ν of (4.4) on what was sent less the slope hold's term: the speeds the plan asked for. The
+  // stall check counts these: a wheel the hold keeps still on a slope is doing what it was asked.
+  MotorVector planned_no_load_velocity() const {
+    return plan_estimator_.no_load_velocity_radps();
+  }
 
   // One driving cycle: the duty cycles wanted (before the slew rules); fills `status`.
   MotorVector update(const MotionInput& input, const RuntimeSettings& settings,
@@ -104,6 +110,11 @@ class MotionController {
   const LoadGainParams* load_gains_;  // B± of (4.6) at the configured icr
   adaptation::RoverBacklashTracker backlash_;
   adaptation::NoLoadEstimator estimator_;
+  // (4.4) on the commands less the slope hold's term: ν̂ of the plan (slope_hold.hpp).
+  adaptation::NoLoadEstimator plan_estimator_;
+  behaviour::SlopeHold slope_hold_;
+  MotorVector hold_radps_{};  // the slope hold's term in this cycle's ŵ
+  bool gait_running_ = false;  // a gait drives the joints this cycle
   JointParams joints_;  // (5.3) with the full backlash margin, for the gaits' strokes
   double joint_dead_time_s_;
   // T_run of the dead man's run-on (joint_margin.hpp): 0.262144·dog s + the dead time; 0 with
@@ -125,6 +136,7 @@ class MotionController {
   // from the bisection's and depends on the cycles before (supply_current.hpp).
   double last_current_duty_bound_ = 1.0;
   MotorVector load_{};
+  MotorVector velocity_{};  // w of (4.2)
   behaviour::MeasuredDropExcess drop_excess_;  // what (4.5) leaves out of the measured drop
 };
 

@@ -75,6 +75,79 @@ TEST(MotionControllerGait, AJointHeldByAGaitIsPulledInsideTheSlantBound) {
   }
 }
 
+// The slope hold (slope_hold.hpp) through the controller: rolking with every wheel reading
+// −5 rad/s (rolled back far behind any plan the gait makes: its wheels are asked at most
+// ≈ 2.3 rad/s) for 1000 cycles, once with the hold (K = 10/s, E = 0.1 rad) and once with K = 0,
+// the power management and the axle placement off so that nothing else reads the wheels. Nose up
+// 20° the lost angle reaches E and each wheel is asked K·E = 1 rad/s more, forward (uphill); nose
+// down, the wheels reading +5 rad/s, 1 rad/s backward. On flat ground the commands are the open loop's, bit for bit, whatever the wheels do.
+// The plan's ν (what the stall check counts) is the open loop's ν either way: ν less the hold.
+TEST(MotionControllerSlopeHold, AGaitsWheelsGetKTimesTheirLostAngleOnSlopesOnly) {
+  struct Case {
+    double slope_deg;
+    double wheel_radps;
+    double extra_radps;
+  };
+  for (const Case c : {Case{20.0, -5.0, 1.0}, Case{-20.0, 5.0, -1.0}, Case{0.0, -5.0, 0.0},
+                       Case{0.0, 5.0, 0.0}}) {
+    SCOPED_TRACE(c.slope_deg);
+    SCOPED_TRACE(c.wheel_radps);
+    const auto commands = [&](double gain_per_s) {
+      Params params;
+      params.behaviours.slope_hold_gain_per_s = gain_per_s;
+      MotionController controller(params);
+      MotorVector p{};
+      p[kFrontJoint] = -1.2121;
+      p[kRearJoint] = 1.2121;
+      controller.reset_joint_positions(p);
+      RuntimeSettings settings = runtime_settings_from(params);
+      settings.switches.power_management = false;
+      settings.switches.axle_placement = false;
+      MotionInput input;
+      input.period_s = params.cycle.period_s;
+      input.shaft_position_rad = p;
+      input.reference_supply_v = 24.0;
+      const double sigma = c.slope_deg * std::numbers::pi / 180.0;
+      input.accel_mps2 = {-9.81 * std::sin(sigma), 0.0, -9.81 * std::cos(sigma)};
+      for (std::size_t i = 0; i < kWheelCount; ++i) input.shaft_velocity_radps[i] = c.wheel_radps;
+      input.targets.gait = mobility::Gait::kRolking;
+      input.targets.gait_speed = 1.0;
+      DriverStatus status;
+      for (int k = 0; k < 1000; ++k) {
+        controller.record_sent(controller.update(input, settings, status), input.supply_v);
+      }
+      EXPECT_NEAR(status.slope_rad, sigma, 0.005);
+      struct Out {
+        MotorVector commanded{};
+        MotorVector no_load{};
+        MotorVector planned{};
+      } out;
+      for (std::size_t i = 0; i < kMotorCount; ++i) {
+        out.commanded[i] = status.motors[i].commanded_radps;
+        out.no_load[i] = status.motors[i].no_load_velocity_radps;
+      }
+      out.planned = controller.planned_no_load_velocity();
+      return out;
+    };
+    const auto held_out = commands(10.0);
+    const auto open_out = commands(0.0);
+    const MotorVector& held = held_out.commanded;
+    const MotorVector& open = open_out.commanded;
+    for (std::size_t i = 0; i < kWheelCount; ++i) {
+      if (c.extra_radps == 0.0) {
+        EXPECT_EQ(held[i], open[i]) << kMotorNames[i];
+      } else {
+        EXPECT_NEAR(held[i] - open[i], c.extra_radps, 1e-9) << kMotorNames[i];
+      }
+      EXPECT_NEAR(held_out.planned[i], open_out.planned[i], 1e-9) << kMotorNames[i];
+      EXPECT_NEAR(held_out.no_load[i] - open_out.no_load[i], c.extra_radps, 1e-9)
+          << kMotorNames[i];
+    }
+    EXPECT_EQ(held[kFrontJoint], open[kFrontJoint]);
+    EXPECT_EQ(held[kRearJoint], open[kRearJoint]);
+  }
+}
+
 // The operator's v3ᵈ (chapter 5.2) reaches the wheels as m3·v3: (4.14) ramps v3 toward the
 // target (μ = 2/s: after 640 cycles, 10 s, within 1e-6 of it), and ŵ is +v3 on the left-rear and
 // right-front wheels, −v3 on the left-front and right-rear ones, 0 on the centre wheels and the
