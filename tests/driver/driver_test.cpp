@@ -695,6 +695,36 @@ TEST_F(SpinDriverTest, StandingStillHoldsTheHeadingWhateverTheGyroReads) {
   EXPECT_GT(driver.status().pose.heading_rad, heading_rad + 0.1);
 }
 
+// Standing is judged on each motor's speed averaged over the last 8 cycles (125 ms), not on one
+// sample: a wheel standing in soft sand rocks by a few encoder counts either way. With the gyro's
+// null moved by 2 counts (0.034 rad/s of (3.4)) and the six wheels rocking at ±0.015 rad/s (9
+// counts of vel, above the 0.01 rad/s a sample would call motion), the rover stands: the heading
+// holds. The same speed one way (a creep) is motion: the heading follows the gyro again.
+class StandingDriverTest : public SpinDriverTest {
+ protected:
+  // 3 s standing (the null learnt at 505), then 5 s with the null moved by 2 counts and the
+  // wheels pushed at ±0.015 rad/s; the heading's change over those 5 s.
+  double heading_change_rad(bool rocking) {
+    start_up();
+    const OperatorInput stand = targets(0.0);
+    cycles(200, &stand);
+    const double heading_rad = driver.status().pose.heading_rad;
+    rover.yaw = 507;
+    rover.rocking = rocking;
+    for (std::size_t i = 0; i < kWheelCount; ++i) rover.pushed_radps[i] = 0.015;
+    cycles(320, &stand);
+    return driver.status().pose.heading_rad - heading_rad;
+  }
+};
+
+TEST_F(StandingDriverTest, AWheelRockingWhereItStandsStands) {
+  EXPECT_EQ(heading_change_rad(true), 0.0);
+}
+
+TEST_F(StandingDriverTest, AWheelCreepingDoesNotStand) {
+  EXPECT_LT(heading_change_rad(false), -0.1);  // the gyro's 0.034 rad/s, clockwise, counts
+}
+
 // Field Experiment 1.1: on the tether the duty cycles are bounded so that even with every motor
 // stalled the supply's current stays within its 6 A (supply_current.hpp); six wheels at one
 // duty get about 0.35 of full duty there (0.377 standing at 24 V; here the wheels turn, and the

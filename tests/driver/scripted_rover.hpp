@@ -42,6 +42,10 @@ class ScriptedRover {
   // Before its next response the shaft springs back this many pulses and forward again: two
   // direction changes inside one cycle, which leave dir as it was and move stp (motor_position.hpp)
   std::array<int, 8> spring_back_pulses{};
+  // A motor the ground turns: this speed on top of its duty's [rad/s]; with `rocking` its sign
+  // flips at every request (a wheel rocking where it stands in soft sand).
+  std::array<double, 8> pushed_radps{};
+  bool rocking = false;
 
   // Applies one cycle's requests, moves the motors for dt, and returns the responses.
   std::vector<protocol::CanFrame> respond(const std::vector<protocol::CanFrame>& requests,
@@ -107,6 +111,8 @@ class ScriptedRover {
       speed *= dragging_speed_share;
       dragged_rad[node] += std::abs(speed) * dt_s;
     }
+    speed += pushed_radps[node];
+    if (rocking) pushed_radps[node] = -pushed_radps[node];
     if (spring_back_pulses[node] > 0) {
       const double n = spring_back_pulses[node];
       r.stp = wrap(r.pulses + n);  // the second change, after n pulses back
