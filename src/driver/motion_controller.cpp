@@ -402,9 +402,9 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   const MotorVector walking = walking_motion(joints, bounds, input, settings, status);
   // The slope hold on the angle the gait's wheels lost downhill against the plan (its ν̂ from
   // the commands less the hold's own term).
-  hold_radps_ = slope_hold_.update(velocity_, plan_estimator_.no_load_velocity_radps(),
-                                   status.slope_rad, gait_running_ && !input.stopping,
-                                   input.period_s, params_->behaviours);
+  const MotorVector hold = slope_hold_.update(velocity_, plan_estimator_.no_load_velocity_radps(),
+                                              status.slope_rad, gait_running_ && !input.stopping,
+                                              input.period_s, params_->behaviours);
   const bool at_rest_stopping = input.stopping && at_rest();
   const MotorVector h_load =
       input.stopping ? MotorVector{}
@@ -412,17 +412,20 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
                                                           params_->load_distribution,
                                                           settings.switches);
   // (5.4)–(5.6) under D, then the load distribution h (6.5)/(6.6) within the same bounds.
+  // planned: the same without the slope hold's term, within the same bounds.
   struct Plan {
     mobility::Summation sum;
     MotorVector w_hat{};
+    MotorVector planned{};
   };
   const auto plan = [&](double max_duty) {
     const MotorVector limit = mobility::motor_velocity_bounds(
         params_->motors.scale, max_duty, curve_, input.supply_v, params_->motors.nominal_supply_v);
-    Plan p{mobility::sum_motions(driving, walking, limit), {}};
+    Plan p{mobility::sum_motions(driving, walking, limit), {}, {}};
     for (std::size_t i = 0; i < kMotorCount; ++i) {
-      p.w_hat[i] = std::clamp(p.sum.velocities_radps[i] + h_load[i] + hold_radps_[i], -limit[i],
-                              limit[i]);
+      const double planned = p.sum.velocities_radps[i] + h_load[i];
+      p.w_hat[i] = std::clamp(planned + hold[i], -limit[i], limit[i]);
+      p.planned[i] = std::clamp(planned, -limit[i], limit[i]);
     }
     return p;
   };
@@ -454,13 +457,19 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   if (at_rest_stopping) {
     drive_velocity_ = {};
     joint_velocity_ = {};
-    for (MotorStatus& m : status.motors) m.commanded_radps = 0.0;
+    for (MotorStatus& m : status.motors) m.commanded_radps = m.slope_hold_radps = 0.0;
     status.commands = {};
     slope_hold_.reset();
     hold_radps_ = {};
     return MotorVector{};
   }
-  for (std::size_t i = 0; i < kMotorCount; ++i) status.motors[i].commanded_radps = p.w_hat[i];
+  // The hold's share is what of its term the bounds let through: where the plan alone already
+  // asks for a motor's bound, none (the stall check then counts the motor's whole command).
+  for (std::size_t i = 0; i < kMotorCount; ++i) hold_radps_[i] = p.w_hat[i] - p.planned[i];
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    status.motors[i].commanded_radps = p.w_hat[i];
+    status.motors[i].slope_hold_radps = hold_radps_[i];
+  }
   return to_duty(p.w_hat, input);
 }
 

@@ -113,7 +113,7 @@ class MotionController {
   // (4.4) on the commands less the slope hold's term: ν̂ of the plan (slope_hold.hpp).
   adaptation::NoLoadEstimator plan_estimator_;
   behaviour::SlopeHold slope_hold_;
-  MotorVector hold_radps_{};  // the slope hold's term in this cycle's ŵ
+  MotorVector hold_radps_{};  // the slope hold's share of this cycle's ŵ (within its bounds)
   bool gait_running_ = false;  // a gait drives the joints this cycle
   JointParams joints_;  // (5.3) with the full backlash margin, for the gaits' strokes
   double joint_dead_time_s_;

@@ -35,6 +35,7 @@ struct MotorStatus {
   double load_radps = 0.0;          // l = w − ν (Definition 4.9)
   double torque_nm = 0.0;           // τ = l/B±_icr(d) of (4.6), the external torque's estimate
   double commanded_radps = 0.0;     // ŵ of (5.4) after κ and h
+  double slope_hold_radps = 0.0;    // the slope hold's share of ŵ (core/behaviour/slope_hold.hpp)
   double duty = 0.0;                // d sent this cycle
   int silent_cycles = 0;            // consecutive cycles without a response
 };

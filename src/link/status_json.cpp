@@ -23,6 +23,7 @@ Json motor_json(const driver::MotorStatus& motor) {
           {"load_radps", motor.load_radps},
           {"torque_nm", motor.torque_nm},
           {"commanded_radps", motor.commanded_radps},
+          {"slope_hold_radps", motor.slope_hold_radps},
           {"duty", motor.duty},
           {"silent_cycles", motor.silent_cycles}};
 }

@@ -33,7 +33,7 @@ void for_each_number(const driver::DriverStatus& s,
   for (const driver::MotorStatus& m : s.motors) {
     for (double v : {m.shaft_position_rad, m.position_rad, m.position_uncertainty_rad,
                      m.velocity_radps, m.no_load_velocity_radps, m.load_radps,
-                     m.commanded_radps, m.duty}) {
+                     m.commanded_radps, m.slope_hold_radps, m.duty}) {
       visit("motors[]", v);
     }
   }

@@ -5,8 +5,9 @@
 namespace marsokhod::runner {
 namespace {
 
-constexpr const char* kPerMotor[] = {"shaft_rad", "p_rad", "w_radps", "nu_radps", "load_radps",
-                                     "tau_nm", "cmd_radps", "duty"};
+constexpr const char* kPerMotor[] = {"shaft_rad", "p_rad",      "w_radps", "nu_radps",
+                                     "load_radps", "tau_nm",    "cmd_radps", "hold_radps",
+                                     "duty"};
 
 void add(std::string& row, double value) {
   char text[32];
@@ -61,7 +62,7 @@ std::string telemetry_row(double time_s, bool running, const driver::DriverStatu
   for (const driver::MotorStatus& m : s.motors) {
     for (double v : {m.shaft_position_rad, m.position_rad, m.velocity_radps,
                      m.no_load_velocity_radps, m.load_radps, m.torque_nm, m.commanded_radps,
-                     m.duty}) {
+                     m.slope_hold_radps, m.duty}) {
       add(row, v);
     }
   }

@@ -2,8 +2,12 @@
 // (4.6) in the status, with Procedure 4.13's weight; a gait inside the slant bounds (6.4).
 #include "driver/motion_controller.hpp"
 
+#include "core/adaptation/motor_curve.hpp"
+#include "core/mobility/summation.hpp"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -80,8 +84,58 @@ TEST(MotionControllerGait, AJointHeldByAGaitIsPulledInsideTheSlantBound) {
 // ≈ 2.3 rad/s) for 1000 cycles, once with the hold (K = 10/s, E = 0.1 rad) and once with K = 0,
 // the power management and the axle placement off so that nothing else reads the wheels. Nose up
 // 20° the lost angle reaches E and each wheel is asked K·E = 1 rad/s more, forward (uphill); nose
-// down, the wheels reading +5 rad/s, 1 rad/s backward. On flat ground the commands are the open loop's, bit for bit, whatever the wheels do.
-// The plan's ν (what the stall check counts) is the open loop's ν either way: ν less the hold.
+// down, the wheels reading +5 rad/s, 1 rad/s backward. On flat ground the commands are the open
+// loop's, bit for bit, whatever the wheels do.
+// The status publishes the hold's share (slope_hold_radps); the plan's ν (what the stall check
+// counts) is the open loop's ν either way: ν less the hold.
+// One rolking run for the slope hold: every wheel reading `wheel_radps`, the slope
+// `slope_deg` nose up, the supply at `supply_v` (24 V nominal), 1000 cycles.
+struct HoldRun {
+  MotorVector commanded{};
+  MotorVector no_load{};
+  MotorVector planned{};
+  MotorVector hold{};
+  double walking_scale = 0.0;
+};
+
+HoldRun rolking_with_the_hold(double slope_deg, double wheel_radps, double gain_per_s,
+                              double supply_v) {
+  Params params;
+  params.behaviours.slope_hold_gain_per_s = gain_per_s;
+  MotionController controller(params);
+  MotorVector p{};
+  p[kFrontJoint] = -1.2121;
+  p[kRearJoint] = 1.2121;
+  controller.reset_joint_positions(p);
+  RuntimeSettings settings = runtime_settings_from(params);
+  settings.switches.power_management = false;
+  settings.switches.axle_placement = false;
+  MotionInput input;
+  input.period_s = params.cycle.period_s;
+  input.shaft_position_rad = p;
+  input.supply_v = supply_v;
+  input.reference_supply_v = 24.0;
+  const double sigma = slope_deg * std::numbers::pi / 180.0;
+  input.accel_mps2 = {-9.81 * std::sin(sigma), 0.0, -9.81 * std::cos(sigma)};
+  for (std::size_t i = 0; i < kWheelCount; ++i) input.shaft_velocity_radps[i] = wheel_radps;
+  input.targets.gait = mobility::Gait::kRolking;
+  input.targets.gait_speed = 1.0;
+  DriverStatus status;
+  for (int k = 0; k < 1000; ++k) {
+    controller.record_sent(controller.update(input, settings, status), input.supply_v);
+  }
+  EXPECT_NEAR(status.slope_rad, sigma, 0.005);
+  HoldRun out;
+  for (std::size_t i = 0; i < kMotorCount; ++i) {
+    out.commanded[i] = status.motors[i].commanded_radps;
+    out.hold[i] = status.motors[i].slope_hold_radps;
+    out.no_load[i] = status.motors[i].no_load_velocity_radps;
+  }
+  out.planned = controller.planned_no_load_velocity();
+  out.walking_scale = status.walking_scale;
+  return out;
+}
+
 TEST(MotionControllerSlopeHold, AGaitsWheelsGetKTimesTheirLostAngleOnSlopesOnly) {
   struct Case {
     double slope_deg;
@@ -92,45 +146,8 @@ TEST(MotionControllerSlopeHold, AGaitsWheelsGetKTimesTheirLostAngleOnSlopesOnly)
                        Case{0.0, 5.0, 0.0}}) {
     SCOPED_TRACE(c.slope_deg);
     SCOPED_TRACE(c.wheel_radps);
-    const auto commands = [&](double gain_per_s) {
-      Params params;
-      params.behaviours.slope_hold_gain_per_s = gain_per_s;
-      MotionController controller(params);
-      MotorVector p{};
-      p[kFrontJoint] = -1.2121;
-      p[kRearJoint] = 1.2121;
-      controller.reset_joint_positions(p);
-      RuntimeSettings settings = runtime_settings_from(params);
-      settings.switches.power_management = false;
-      settings.switches.axle_placement = false;
-      MotionInput input;
-      input.period_s = params.cycle.period_s;
-      input.shaft_position_rad = p;
-      input.reference_supply_v = 24.0;
-      const double sigma = c.slope_deg * std::numbers::pi / 180.0;
-      input.accel_mps2 = {-9.81 * std::sin(sigma), 0.0, -9.81 * std::cos(sigma)};
-      for (std::size_t i = 0; i < kWheelCount; ++i) input.shaft_velocity_radps[i] = c.wheel_radps;
-      input.targets.gait = mobility::Gait::kRolking;
-      input.targets.gait_speed = 1.0;
-      DriverStatus status;
-      for (int k = 0; k < 1000; ++k) {
-        controller.record_sent(controller.update(input, settings, status), input.supply_v);
-      }
-      EXPECT_NEAR(status.slope_rad, sigma, 0.005);
-      struct Out {
-        MotorVector commanded{};
-        MotorVector no_load{};
-        MotorVector planned{};
-      } out;
-      for (std::size_t i = 0; i < kMotorCount; ++i) {
-        out.commanded[i] = status.motors[i].commanded_radps;
-        out.no_load[i] = status.motors[i].no_load_velocity_radps;
-      }
-      out.planned = controller.planned_no_load_velocity();
-      return out;
-    };
-    const auto held_out = commands(10.0);
-    const auto open_out = commands(0.0);
+    const HoldRun held_out = rolking_with_the_hold(c.slope_deg, c.wheel_radps, 10.0, 24.0);
+    const HoldRun open_out = rolking_with_the_hold(c.slope_deg, c.wheel_radps, 0.0, 24.0);
     const MotorVector& held = held_out.commanded;
     const MotorVector& open = open_out.commanded;
     for (std::size_t i = 0; i < kWheelCount; ++i) {
@@ -139,13 +156,54 @@ TEST(MotionControllerSlopeHold, AGaitsWheelsGetKTimesTheirLostAngleOnSlopesOnly)
       } else {
         EXPECT_NEAR(held[i] - open[i], c.extra_radps, 1e-9) << kMotorNames[i];
       }
+      // K·E, up to the rounding of ŵ less the plan's ŵ
+      EXPECT_NEAR(held_out.hold[i], c.extra_radps, 1e-12) << kMotorNames[i];
+      EXPECT_EQ(open_out.hold[i], 0.0) << kMotorNames[i];
       EXPECT_NEAR(held_out.planned[i], open_out.planned[i], 1e-9) << kMotorNames[i];
       EXPECT_NEAR(held_out.no_load[i] - open_out.no_load[i], c.extra_radps, 1e-9)
           << kMotorNames[i];
     }
+    EXPECT_EQ(held_out.hold[kFrontJoint], 0.0);
+    EXPECT_EQ(held_out.hold[kRearJoint], 0.0);
     EXPECT_EQ(held[kFrontJoint], open[kFrontJoint]);
     EXPECT_EQ(held[kRearJoint], open[kRearJoint]);
   }
+}
+
+// The hold's share is what of its term the wheel's bound (5.5) lets through: nose up 20° with
+// the wheels rolled back, min(ŵ_plan + K·E, ζW(1)U/Ū) − ŵ_plan for each wheel, and the plan's ν
+// (what the stall check counts) is the open loop's ν whatever the share. Where the plan alone
+// already asks a wheel for its bound, the share is 0 and the check counts the wheel's whole
+// command (a gait pushing its wheels into a block tilts the chassis like a slope; before
+// 2026-12-02 the hold's unclamped term was taken off the clamped command, the check saw the
+// wheels asked nothing, and obstacle-axle-placement-off no longer latched its stall). At a low
+// supply U the bounds come within K·E of the plan.
+TEST(MotionControllerSlopeHold, TheHoldsShareIsWhatTheBoundsLetThrough) {
+  const Params params;
+  const adaptation::MotorCurve curve(
+      adaptation::select_motor_curve(params.motor_curves, params.cycle.icr));
+  std::size_t partial = 0;
+  for (const double supply_v : {24.0, 2.0, 1.0, 0.5}) {
+    SCOPED_TRACE(supply_v);
+    const HoldRun held = rolking_with_the_hold(20.0, -5.0, 10.0, supply_v);
+    const HoldRun open = rolking_with_the_hold(20.0, -5.0, 0.0, supply_v);
+    const MotorVector bound = mobility::motor_velocity_bounds(params.motors.scale, 1.0, curve,
+                                                              supply_v, 24.0);
+    for (std::size_t i = 0; i < kWheelCount; ++i) {
+      SCOPED_TRACE(kMotorNames[i]);
+      const double plan = open.commanded[i];
+      const double share = std::min(plan + 1.0, bound[i]) - plan;
+      EXPECT_NEAR(held.hold[i], share, 1e-12);
+      EXPECT_NEAR(held.commanded[i], plan + share, 1e-12);
+      EXPECT_NEAR(held.planned[i], open.planned[i], 1e-9);
+      if (share < 1.0) ++partial;
+      if (plan == bound[i]) {
+        EXPECT_EQ(held.hold[i], 0.0);
+        EXPECT_NEAR(held.planned[i], held.no_load[i], 1e-9);
+      }
+    }
+  }
+  EXPECT_GE(partial, 1u);
 }
 
 // The operator's v3ᵈ (chapter 5.2) reaches the wheels as m3·v3: (4.14) ramps v3 toward the

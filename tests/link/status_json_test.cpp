@@ -26,8 +26,8 @@ driver::DriverStatus sample_status() {
   s.slope_rad = 0.125;
   for (std::size_t i = 0; i < kMotorCount; ++i) {
     const double k = static_cast<double>(i);
-    s.motors[i] = {k,       k + 0.5, k / 1024.0, k + 0.25,           k + 0.125,
-                   0.125,   4.125,   k - 0.5,    k / 8.0,            static_cast<int>(i)};
+    s.motors[i] = {k,     k + 0.5, k / 1024.0, k + 0.25, k + 0.125, 0.125,
+                   4.125, k - 0.5, k / 16.0,   k / 8.0,  static_cast<int>(i)};
   }
   s.sensor_silent_cycles = 2;
   s.max_duty = 0.75;
@@ -123,6 +123,7 @@ TEST(StatusJson, KeysEveryMotorByItsName) {
     EXPECT_EQ(m["load_radps"], 0.125);
     EXPECT_EQ(m["torque_nm"], 4.125);
     EXPECT_EQ(m["commanded_radps"], k - 0.5);
+    EXPECT_EQ(m["slope_hold_radps"], k / 16.0);
     EXPECT_EQ(m["duty"], k / 8.0);
     EXPECT_EQ(m["silent_cycles"], static_cast<int>(i));
   }

@@ -256,6 +256,8 @@ export interface MotorStatus {
   /** τ = l/B±_icr(d) of (4.6) [N·m], the external torque's estimate. */
   torque_nm: StatusNumber;
   commanded_radps: StatusNumber;
+  /** The slope hold's share of commanded_radps [rad/s] (a gait's wheels on a slope; else 0). */
+  slope_hold_radps: StatusNumber;
   duty: StatusNumber;
   silent_cycles: number;
 }

@@ -13,7 +13,7 @@ import { element } from './dom.js';
 /** @type {MotorName[]} */
 export const MOTORS = ['FL', 'FR', 'CL', 'CR', 'BL', 'BR', 'AF', 'AR'];
 
-/** @typedef {'pos' | 'vel' | 'load' | 'τ' | 'duty' | 'cmd'} RowKey */
+/** @typedef {'pos' | 'vel' | 'load' | 'τ' | 'duty' | 'cmd' | 'hold'} RowKey */
 
 /** @type {[RowKey, string, (m: MotorStatus) => StatusNumber][]} */
 const ROWS = [
@@ -23,6 +23,7 @@ const ROWS = [
   ['τ', 'torque τ = l/B±(d) of (4.6) [N·m]', (m) => m.torque_nm],
   ['duty', 'duty cycle d', (m) => m.duty],
   ['cmd', 'commanded ŵ [rad/s]', (m) => m.commanded_radps],
+  ['hold', "the slope hold's share of ŵ [rad/s]", (m) => m.slope_hold_radps],
 ];
 
 const DEG_PER_RAD = 180 / Math.PI;

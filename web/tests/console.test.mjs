@@ -76,7 +76,7 @@ test('the page loads and shows live status', async () => {
   const header = await page.$$eval('#motor-table thead th', (ths) => ths.map((th) => th.textContent));
   assert.deepEqual(header.slice(1), ['FL', 'FR', 'CL', 'CR', 'BL', 'BR', 'AF', 'AR']);
   const rows = await page.$$eval('#motor-table tbody th', (ths) => ths.map((th) => th.textContent));
-  assert.deepEqual(rows, ['pos', 'vel', 'load', 'τ', 'duty', 'cmd']);
+  assert.deepEqual(rows, ['pos', 'vel', 'load', 'τ', 'duty', 'cmd', 'hold']);
   assert.match(await page.textContent('#motor-table tbody tr:nth-child(1) td:nth-child(8)'), /^-?\d+\.\d{3}$/,
     'AF position shown');
   assert.ok(first.truth, 'marsokhod run attaches the simulator truth');
