@@ -106,7 +106,7 @@ TEST(ShippedScenarios, IncludeTheRequiredSet) {
 // Field Experiments 6.3/6.4 and chapter 6.2.3: the same front-wheel walk against a block of 0.8
 // wheel radii with the axle placement on and off, on a unit the files were not written on (seed 2).
 // With it the walk never stalls and keeps going round; without it the front joint pushes the
-// front axle into the block until the stuck failsafe stops the rover (on 19 of seeds 1–20; 0 of
+// front axle into the block until the stuck failsafe stops the rover (on each of seeds 1–20; 0 of
 // 20 with it, RELIABILITY.md).
 TEST(ShippedScenarios, TheAxlePlacementWalksPastTheStallAtABlock) {
   RunOptions options;
