@@ -14,6 +14,14 @@
 namespace marsokhod::driver {
 namespace {
 
+// Every motor at 0 but the joints, contracted at C = ∓1.2121 (Remark 3.1's positions).
+MotorVector contracted_joints() {
+  MotorVector p{};
+  p[kFrontJoint] = -1.2121;
+  p[kRearJoint] = 1.2121;
+  return p;
+}
+
 // The front-left wheel held at d = 0.5 at U = Ū = 24 V: ŵ = ζ0·W₅₁₁(0.5) = 0.9896·1.50 = 1.4844
 // rad/s, and after five cycles ν of (4.4) is ŵ (the δ of h = 0.0157 s sum to 1). A measured w
 // 0.1653 rad/s above it is the load of Procedure 4.13's 5.51 N·m pushing along d (B⁺(0.5) =
@@ -50,9 +58,7 @@ TEST(MotionControllerGait, AJointHeldByAGaitIsPulledInsideTheSlantBound) {
   for (const bool slant_response : {true, false}) {
     SCOPED_TRACE(slant_response);
     MotionController controller(params);
-    MotorVector p{};
-    p[kFrontJoint] = -1.2121;
-    p[kRearJoint] = 1.2121;
+    const MotorVector p = contracted_joints();
     controller.reset_joint_positions(p);
     RuntimeSettings settings = runtime_settings_from(params);
     settings.switches.slant_response = slant_response;
@@ -103,9 +109,7 @@ HoldRun rolking_with_the_hold(double slope_deg, double wheel_radps, double gain_
   Params params;
   params.behaviours.slope_hold_gain_per_s = gain_per_s;
   MotionController controller(params);
-  MotorVector p{};
-  p[kFrontJoint] = -1.2121;
-  p[kRearJoint] = 1.2121;
+  const MotorVector p = contracted_joints();
   controller.reset_joint_positions(p);
   RuntimeSettings settings = runtime_settings_from(params);
   settings.switches.power_management = false;
@@ -213,9 +217,7 @@ TEST(MotionControllerSlopeHold, TheHoldsShareIsWhatTheBoundsLetThrough) {
 TEST(MotionControllerDriving, DriftTargetDrivesTheExteriorWheelsAgainstEachOther) {
   const Params params;
   MotionController controller(params);
-  MotorVector p{};
-  p[kFrontJoint] = -1.2121;
-  p[kRearJoint] = 1.2121;
+  const MotorVector p = contracted_joints();
   controller.reset_joint_positions(p);
   const RuntimeSettings settings = runtime_settings_from(params);
   MotionInput input;
