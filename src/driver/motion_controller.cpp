@@ -465,8 +465,8 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   }
   // The hold's share is what of its term the bounds let through: where the plan alone already
   // asks for a motor's bound, none (the stall check then counts the motor's whole command).
-  for (std::size_t i = 0; i < kMotorCount; ++i) hold_radps_[i] = p.w_hat[i] - p.planned[i];
   for (std::size_t i = 0; i < kMotorCount; ++i) {
+    hold_radps_[i] = p.w_hat[i] - p.planned[i];
     status.motors[i].commanded_radps = p.w_hat[i];
     status.motors[i].slope_hold_radps = hold_radps_[i];
   }

@@ -181,7 +181,10 @@ TEST(MotionControllerSlopeHold, AGaitsWheelsGetKTimesTheirLostAngleOnSlopesOnly)
 // command (a gait pushing its wheels into a block tilts the chassis like a slope; before
 // 2026-12-02 the hold's unclamped term was taken off the clamped command, the check saw the
 // wheels asked nothing, and obstacle-axle-placement-off no longer latched its stall). At a low
-// supply U the bounds come within K·E of the plan.
+// supply U the bounds come within K·E of the plan. (Rolking alone never puts a wheel on its
+// bound: the joints bind first and scale the gait, λ = 0.04–0.16 here; the share 0 at the bound
+// is the same formula, and obstacle-axle-placement-off's stall, runner_scenarios_test.cpp, is
+// that case end to end.)
 TEST(MotionControllerSlopeHold, TheHoldsShareIsWhatTheBoundsLetThrough) {
   const Params params;
   const adaptation::MotorCurve curve(
@@ -201,10 +204,6 @@ TEST(MotionControllerSlopeHold, TheHoldsShareIsWhatTheBoundsLetThrough) {
       EXPECT_NEAR(held.commanded[i], plan + share, 1e-12);
       EXPECT_NEAR(held.planned[i], open.planned[i], 1e-9);
       if (share < 1.0) ++partial;
-      if (plan == bound[i]) {
-        EXPECT_EQ(held.hold[i], 0.0);
-        EXPECT_NEAR(held.planned[i], held.no_load[i], 1e-9);
-      }
     }
   }
   EXPECT_GE(partial, 1u);
