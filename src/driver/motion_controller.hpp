@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "core/adaptation/backlash.hpp"
 #include "core/adaptation/motor_curve.hpp"
@@ -114,6 +115,15 @@ class MotionController {
   adaptation::NoLoadEstimator plan_estimator_;
   behaviour::SlopeHold slope_hold_;
   MotorVector hold_radps_{};  // the slope hold's share of this cycle's ŵ (within its bounds)
+  // The wheels' roles the slope hold's lost angle belongs to: the gait's state and whether 6.2.3
+  // has switched each joint's axle placement (none before the first cycle).
+  struct HoldRole {
+    std::optional<std::size_t> gait_state;
+    bool front_switched = false;
+    bool rear_switched = false;
+    bool operator==(const HoldRole&) const = default;
+  };
+  HoldRole hold_role_{};
   bool gait_running_ = false;  // a gait drives the joints this cycle
   JointParams joints_;  // (5.3) with the full backlash margin, for the gaits' strokes
   double joint_dead_time_s_;

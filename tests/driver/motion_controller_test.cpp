@@ -209,6 +209,63 @@ TEST(MotionControllerSlopeHold, TheHoldsShareIsWhatTheBoundsLetThrough) {
   EXPECT_GE(partial, 1u);
 }
 
+// A new stroke gives the wheels new roles, and the hold starts again from e = 0 (an anchor's
+// lost angle asked of a wheel that now rolls with its axle pushes against the joint). Rolking 20°
+// nose up with every wheel reading −3 rad/s (rolled back: rolking asks its wheels at most ≈ 2.3
+// rad/s) and the joints following their commands exactly (w = ŵ, p integrated): while a stroke
+// runs, e reaches E and every wheel gets K·E = 1 rad/s; in the cycle the gait's state changes, e
+// is one cycle's h·(ν̂ − w) ≤ 0.0157·5.3 = 0.083 rad and the term K·h·(ν̂ − w) (ν̂ of the plan,
+// this cycle's), below K·E.
+TEST(MotionControllerSlopeHold, ANewStrokeStartsTheLostAngleAgain) {
+  Params params;
+  params.behaviours.slope_hold_gain_per_s = 10.0;
+  MotionController controller(params);
+  MotorVector p = contracted_joints();
+  controller.reset_joint_positions(p);
+  RuntimeSettings settings = runtime_settings_from(params);
+  settings.switches.power_management = false;
+  settings.switches.axle_placement = false;
+  MotionInput input;
+  input.period_s = params.cycle.period_s;
+  input.reference_supply_v = 24.0;
+  const double sigma = 20.0 * std::numbers::pi / 180.0;
+  input.accel_mps2 = {-9.81 * std::sin(sigma), 0.0, -9.81 * std::cos(sigma)};
+  for (std::size_t i = 0; i < kWheelCount; ++i) input.shaft_velocity_radps[i] = -3.0;
+  input.targets.gait = mobility::Gait::kRolking;
+  input.targets.gait_speed = 1.0;
+  DriverStatus status;
+  const double gain = params.behaviours.slope_hold_gain_per_s;
+  const double full = gain * params.behaviours.slope_hold_max_rad;
+  std::size_t changes = 0;
+  bool held_full = false;  // the term was K·E on every wheel in the cycle before
+  for (int k = 0; k < 20000 && changes < 4; ++k) {
+    input.shaft_position_rad = p;
+    const std::size_t state = status.gait_state;
+    const MotorVector planned = controller.planned_no_load_velocity();  // this cycle's ν̂
+    const MotorVector w_hat = controller.update(input, settings, status);
+    controller.record_sent(w_hat, 24.0);
+    for (std::size_t j : {kFrontJoint, kRearJoint}) {
+      input.shaft_velocity_radps[j] = status.motors[j].commanded_radps;
+      p[j] += input.period_s * status.motors[j].commanded_radps;
+    }
+    if (k > 0 && status.gait_state != state) {
+      SCOPED_TRACE(changes);
+      EXPECT_TRUE(held_full);
+      for (std::size_t i = 0; i < kWheelCount; ++i) {
+        const double one_cycle = gain * input.period_s * (planned[i] + 3.0);
+        EXPECT_NEAR(status.motors[i].slope_hold_radps, one_cycle, 1e-9) << kMotorNames[i];
+        EXPECT_LT(status.motors[i].slope_hold_radps, full) << kMotorNames[i];
+      }
+      ++changes;
+    }
+    held_full = true;
+    for (std::size_t i = 0; i < kWheelCount; ++i) {
+      held_full = held_full && std::abs(status.motors[i].slope_hold_radps - full) < 1e-9;
+    }
+  }
+  EXPECT_EQ(changes, 4u);
+}
+
 // The operator's v3ᵈ (chapter 5.2) reaches the wheels as m3·v3: (4.14) ramps v3 toward the
 // target (μ = 2/s: after 640 cycles, 10 s, within 1e-6 of it), and ŵ is +v3 on the left-rear and
 // right-front wheels, −v3 on the left-front and right-rear ones, 0 on the centre wheels and the
