@@ -104,26 +104,39 @@ struct HoldRun {
   double walking_scale = 0.0;
 };
 
-HoldRun rolking_with_the_hold(double slope_deg, double wheel_radps, double gain_per_s,
-                              double supply_v) {
-  Params params;
-  params.behaviours.slope_hold_gain_per_s = gain_per_s;
-  MotionController controller(params);
-  const MotorVector p = contracted_joints();
-  controller.reset_joint_positions(p);
+// The power management and the axle placement off, so that nothing but the hold reads the wheels.
+RuntimeSettings hold_only_settings(const Params& params) {
   RuntimeSettings settings = runtime_settings_from(params);
   settings.switches.power_management = false;
   settings.switches.axle_placement = false;
+  return settings;
+}
+
+// Rolking at full speed `slope_deg` nose up, every wheel reading `wheel_radps`, the joints
+// contracted, at Ū = 24 V.
+MotionInput rolking_up(const Params& params, double slope_deg, double wheel_radps) {
   MotionInput input;
   input.period_s = params.cycle.period_s;
-  input.shaft_position_rad = p;
-  input.supply_v = supply_v;
+  input.shaft_position_rad = contracted_joints();
   input.reference_supply_v = 24.0;
   const double sigma = slope_deg * std::numbers::pi / 180.0;
   input.accel_mps2 = {-9.81 * std::sin(sigma), 0.0, -9.81 * std::cos(sigma)};
   for (std::size_t i = 0; i < kWheelCount; ++i) input.shaft_velocity_radps[i] = wheel_radps;
   input.targets.gait = mobility::Gait::kRolking;
   input.targets.gait_speed = 1.0;
+  return input;
+}
+
+HoldRun rolking_with_the_hold(double slope_deg, double wheel_radps, double gain_per_s,
+                              double supply_v) {
+  Params params;
+  params.behaviours.slope_hold_gain_per_s = gain_per_s;
+  MotionController controller(params);
+  controller.reset_joint_positions(contracted_joints());
+  const RuntimeSettings settings = hold_only_settings(params);
+  MotionInput input = rolking_up(params, slope_deg, wheel_radps);
+  input.supply_v = supply_v;
+  const double sigma = slope_deg * std::numbers::pi / 180.0;
   DriverStatus status;
   for (int k = 0; k < 1000; ++k) {
     controller.record_sent(controller.update(input, settings, status), input.supply_v);
@@ -222,17 +235,8 @@ TEST(MotionControllerSlopeHold, ANewStrokeStartsTheLostAngleAgain) {
   MotionController controller(params);
   MotorVector p = contracted_joints();
   controller.reset_joint_positions(p);
-  RuntimeSettings settings = runtime_settings_from(params);
-  settings.switches.power_management = false;
-  settings.switches.axle_placement = false;
-  MotionInput input;
-  input.period_s = params.cycle.period_s;
-  input.reference_supply_v = 24.0;
-  const double sigma = 20.0 * std::numbers::pi / 180.0;
-  input.accel_mps2 = {-9.81 * std::sin(sigma), 0.0, -9.81 * std::cos(sigma)};
-  for (std::size_t i = 0; i < kWheelCount; ++i) input.shaft_velocity_radps[i] = -3.0;
-  input.targets.gait = mobility::Gait::kRolking;
-  input.targets.gait_speed = 1.0;
+  const RuntimeSettings settings = hold_only_settings(params);
+  MotionInput input = rolking_up(params, 20.0, -3.0);
   DriverStatus status;
   const double gain = params.behaviours.slope_hold_gain_per_s;
   const double full = gain * params.behaviours.slope_hold_max_rad;
