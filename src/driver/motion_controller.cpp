@@ -404,14 +404,15 @@ MotorVector MotionController::update(const MotionInput& input, const RuntimeSett
   const MotorVector walking = walking_motion(joints, bounds, input, settings, status);
   // The slope hold on the angle the gait's wheels lost downhill against the plan (its ν̂ from
   // the commands less the hold's own term).
-  // A new stroke (the gait's state) or an axle placement switched by 6.2.3 gives the wheels new
-  // roles: an anchor's lost angle asked of a wheel that now rolls with its axle pushes against
+  // A new stroke (the gait or its state) or an axle placement switched by 6.2.3 gives the wheels
+  // new roles: an anchor's lost angle asked of a wheel that now rolls with its axle pushes against
   // the joint (tried: the joint-blocked fault in obstacle-axle-placement-on and
   // worm-like-slope-slant-on). The hold starts again from e = 0 at each change. Not at every
   // change of ρ: the ε-formula's ρ moves every cycle with the joints' velocities, but only picks
   // a representative of the same motion (axle_placement.hpp).
   {
-    const HoldRole role{status.gait_state, front_placement_.switched, rear_placement_.switched};
+    const HoldRole role{status.gait, status.gait_state, front_placement_.switched,
+                        rear_placement_.switched};
     if (role != hold_role_) slope_hold_.reset();
     hold_role_ = role;
   }

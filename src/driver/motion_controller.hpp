@@ -115,9 +115,10 @@ class MotionController {
   adaptation::NoLoadEstimator plan_estimator_;
   behaviour::SlopeHold slope_hold_;
   MotorVector hold_radps_{};  // the slope hold's share of this cycle's ŵ (within its bounds)
-  // The wheels' roles the slope hold's lost angle belongs to: the gait's state and whether 6.2.3
-  // has switched each joint's axle placement (none before the first cycle).
+  // The wheels' roles the slope hold's lost angle belongs to: the gait, its state and whether
+  // 6.2.3 has switched each joint's axle placement (none before the first cycle).
   struct HoldRole {
+    mobility::Gait gait = mobility::Gait::kNone;
     std::optional<std::size_t> gait_state;
     bool front_switched = false;
     bool rear_switched = false;

@@ -270,6 +270,37 @@ TEST(MotionControllerSlopeHold, ANewStrokeStartsTheLostAngleAgain) {
   EXPECT_EQ(changes, 4u);
 }
 
+// Another gait is another role for each wheel, whatever its state's index: rolking's joints
+// standing still (its stroke not reached) with every wheel rolled back 20° nose up, the hold at
+// K·E; switched to worm-like, which walks in the same state, the hold starts again from one
+// cycle's K·h·(ν̂ − w).
+TEST(MotionControllerSlopeHold, AnotherGaitStartsTheLostAngleAgain) {
+  Params params;
+  MotionController controller(params);
+  controller.reset_joint_positions(contracted_joints());
+  const RuntimeSettings settings = hold_only_settings(params);
+  MotionInput input = rolking_up(params, 20.0, -3.0);
+  DriverStatus status;
+  const double gain = params.behaviours.slope_hold_gain_per_s;
+  const double full = gain * params.behaviours.slope_hold_max_rad;
+  for (int k = 0; k < 200; ++k) {
+    controller.record_sent(controller.update(input, settings, status), 24.0);
+  }
+  const std::size_t state = status.gait_state;
+  for (std::size_t i = 0; i < kWheelCount; ++i) {
+    EXPECT_NEAR(status.motors[i].slope_hold_radps, full, 1e-9) << kMotorNames[i];
+  }
+  input.targets.gait = mobility::Gait::kWormLike;
+  const MotorVector planned = controller.planned_no_load_velocity();
+  controller.update(input, settings, status);
+  EXPECT_EQ(status.gait_state, state);
+  for (std::size_t i = 0; i < kWheelCount; ++i) {
+    const double one_cycle = gain * input.period_s * (planned[i] + 3.0);
+    EXPECT_NEAR(status.motors[i].slope_hold_radps, one_cycle, 1e-9) << kMotorNames[i];
+    EXPECT_LT(status.motors[i].slope_hold_radps, full) << kMotorNames[i];
+  }
+}
+
 // The operator's v3ᵈ (chapter 5.2) reaches the wheels as m3·v3: (4.14) ramps v3 toward the
 // target (μ = 2/s: after 640 cycles, 10 s, within 1e-6 of it), and ŵ is +v3 on the left-rear and
 // right-front wheels, −v3 on the left-front and right-rear ones, 0 on the centre wheels and the

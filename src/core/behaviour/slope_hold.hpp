@@ -26,7 +26,7 @@
 //   odometry-rolking on hard ground, the stuck failsafe tripped against an obstacle);
 // - driving keeps the open loop: its wheels slip by design.
 // - a wheel's lost angle belongs to its role in the stroke: the driver empties it (reset) when
-//   the gait's state changes or 6.2.3 switches an axle placement (motion_controller.cpp).
+//   the gait or its state changes or 6.2.3 switches an axle placement (motion_controller.cpp).
 // The stall check (estimation/failsafes.hpp) counts the plan's ν, without this term: an anchor
 // the hold keeps still on a slope is not a stalled drive.
 // Off (or gated out) e is 0 and the term vanishes. K = 0 switches the hold off.
