@@ -301,6 +301,44 @@ TEST(MotionControllerSlopeHold, AnotherGaitStartsTheLostAngleAgain) {
   }
 }
 
+// An axle placement switched by 6.2.3 is another role for the wheels: worm-like 20° nose up
+// (fixed ρ of 0 or 1 in each state; rolking's ε-formula gives ρ = 1 − ρ = 0.5 with the joints
+// still, so no switch would show) with every wheel rolled back (−3 rad/s) and both joints held
+// still under their commands (an obstacle), the axle placement on. A joint's load passes the
+// threshold, its placement switches (ρ jumps to 1 − ρ: the joint is slow) within a state, and in
+// that cycle the hold, at K·E the cycle before, starts again from one cycle's K·h·(ν̂ − w).
+TEST(MotionControllerSlopeHold, ASwitchedAxlePlacementStartsTheLostAngleAgain) {
+  Params params;
+  MotionController controller(params);
+  controller.reset_joint_positions(contracted_joints());
+  RuntimeSettings settings = hold_only_settings(params);
+  settings.switches.axle_placement = true;
+  MotionInput input = rolking_up(params, 20.0, -3.0);
+  input.targets.gait = mobility::Gait::kWormLike;
+  DriverStatus status;
+  const double gain = params.behaviours.slope_hold_gain_per_s;
+  const double full = gain * params.behaviours.slope_hold_max_rad;
+  bool switched = false;
+  for (int k = 0; k < 2000 && !switched; ++k) {
+    const std::size_t state = status.gait_state;
+    const double rho_f = status.front_axle_factor, rho_r = status.rear_axle_factor;
+    const double before = status.motors[kFrontLeft].slope_hold_radps;
+    const MotorVector planned = controller.planned_no_load_velocity();
+    controller.record_sent(controller.update(input, settings, status), 24.0);
+    if (k > 0 && status.gait_state == state &&
+        (status.front_axle_factor != rho_f || status.rear_axle_factor != rho_r)) {
+      switched = true;
+      EXPECT_NEAR(before, full, 1e-9);
+      for (std::size_t i = 0; i < kWheelCount; ++i) {
+        const double one_cycle = gain * input.period_s * (planned[i] + 3.0);
+        EXPECT_NEAR(status.motors[i].slope_hold_radps, one_cycle, 1e-9) << kMotorNames[i];
+        EXPECT_LT(status.motors[i].slope_hold_radps, full) << kMotorNames[i];
+      }
+    }
+  }
+  EXPECT_TRUE(switched);
+}
+
 // The operator's v3ᵈ (chapter 5.2) reaches the wheels as m3·v3: (4.14) ramps v3 toward the
 // target (μ = 2/s: after 640 cycles, 10 s, within 1e-6 of it), and ŵ is +v3 on the left-rear and
 // right-front wheels, −v3 on the left-front and right-rear ones, 0 on the centre wheels and the
