@@ -331,6 +331,9 @@ constexpr ParamSpec kBehaviours[] = {
     {.key = "slope_hold_max_rad", .field = field<&BehaviourParams::slope_hold_max_rad>,
      .min = 0.0, .max = 1.0, .unit = "rad", .source = "our extension (slope_hold.hpp)",
      .about = "E: the lost angle the slope hold counts at most (K·E: the most it asks)"},
+    {.key = "slope_placement", .field = field<&BehaviourParams::slope_placement>,
+     .source = "our extension (axle_placement.hpp)",
+     .about = "on a slope rolking's centre stroke asks no anchor downhill (docs/decisions.md)"},
 };
 
 constexpr ParamSpec kSafety[] = {

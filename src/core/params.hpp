@@ -218,6 +218,8 @@ struct BehaviourParams {
   // downhill, e ≤ E. K = 0: off.
   double slope_hold_gain_per_s = 10.0;     // K
   double slope_hold_max_rad = 0.1;         // E
+  // On a slope the ε-formula's strokes take the joints' mismatch uphill (uphill_axle_factors).
+  bool slope_placement = true;
 };
 
 // Chapter 3.2's rules for duty cycles, Field Experiment 6.7 and chapter 3.3's dead man's switch.

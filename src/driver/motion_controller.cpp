@@ -158,11 +158,18 @@ MotionController::JointCommands MotionController::joint_commands(const MotionInp
   // The gait runs inside the behaviours' bounds of this cycle (6.4) (chapter 6.2's summation):
   // its targets are clipped to them and (4.16) pulls a joint back inside.
   const JointBoundsStatus& b = status.joint_bounds;
+  // On a slope (|σ| at least the slant dead band, as for the slope hold) the ε-formula's strokes
+  // ask no anchor downhill (axle_placement.hpp).
+  const BehaviourParams& behaviours = params_->behaviours;
+  const double uphill =
+      behaviours.slope_placement && std::abs(status.slope_rad) >= behaviours.slant_deadband_rad
+          ? (status.slope_rad > 0.0 ? 1.0 : -1.0)
+          : 0.0;
   const mobility::GaitOutput gait = gait_.update(
       {input.targets.gait, input.targets.gait_speed, intent_, front, rear, input.period_s,
        status.motors[kFrontJoint].velocity_radps, status.motors[kRearJoint].velocity_radps,
        mobility::JointBounds{b.front_min_rad, b.front_max_rad},
-       mobility::JointBounds{b.rear_min_rad, b.rear_max_rad}});
+       mobility::JointBounds{b.rear_min_rad, b.rear_max_rad}, uphill});
   status.gait = input.targets.gait;
   status.gait_state = gait.state_index;
   status.gait_speed = input.targets.gait_speed;

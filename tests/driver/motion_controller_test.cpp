@@ -343,6 +343,45 @@ TEST(MotionControllerSlopeHold, ASwitchedAxlePlacementStartsTheLostAngleAgain) {
 // target (μ = 2/s: after 640 cycles, 10 s, within 1e-6 of it), and ŵ is +v3 on the left-rear and
 // right-front wheels, −v3 on the left-front and right-rear ones, 0 on the centre wheels and the
 // joints; nothing else is asked for, so κ = 1 and the wheels get exactly that.
+// On a slope (|σ| at least the slant dead band) rolking's ε-formula stroke asks no anchor downhill
+// (uphill_axle_factors): its first stroke from contracted joints moves the rear joint alone
+// (measured w7 = 0.5 rad/s, extending), and the driver's ρr is 0 nose up (the rear axle stands,
+// where the printed formula's ½ rolls it back downhill at half the rate the centre advances),
+// 1 nose down (it goes back, uphill), ½ on flat ground or with `slope_placement` off. ρf stays ½.
+TEST(MotionControllerSlopePlacement, RolkingsCentreStrokeAsksNoAnchorDownhill) {
+  struct Case {
+    double slope_deg;
+    bool placement;
+    double rear_factor;
+  };
+  for (const Case c : {Case{20.0, true, 0.0}, Case{-20.0, true, 1.0}, Case{0.0, true, 0.5},
+                       Case{2.0, true, 0.5}, Case{20.0, false, 0.5}}) {
+    SCOPED_TRACE(c.slope_deg);
+    SCOPED_TRACE(c.placement);
+    Params params;
+    params.behaviours.slope_placement = c.placement;
+    MotionController controller(params);
+    controller.reset_joint_positions(contracted_joints());
+    const RuntimeSettings settings = hold_only_settings(params);
+    MotionInput input = rolking_up(params, c.slope_deg, 0.0);
+    DriverStatus status;
+    for (int k = 0; k < 1000; ++k) {  // σ settles (λ = 0.99 a cycle)
+      controller.record_sent(controller.update(input, settings, status), input.supply_v);
+    }
+    input.shaft_velocity_radps[kRearJoint] = 0.5;
+    for (int k = 0; k < 100; ++k) {  // the rear joint extends, 1.2121 → 1.99 rad
+      input.shaft_position_rad[kRearJoint] += 0.5 * input.period_s;
+      controller.record_sent(controller.update(input, settings, status), input.supply_v);
+    }
+    ASSERT_EQ(status.gait_state, 0u);
+    ASSERT_NEAR(status.motors[kRearJoint].velocity_radps, 0.5, 1e-9);
+    ASSERT_EQ(status.motors[kFrontJoint].velocity_radps, 0.0);
+    EXPECT_NEAR(status.slope_rad, c.slope_deg * std::numbers::pi / 180.0, 0.005);
+    EXPECT_EQ(status.front_axle_factor, 0.5);
+    EXPECT_EQ(status.rear_axle_factor, c.rear_factor);
+  }
+}
+
 TEST(MotionControllerDriving, DriftTargetDrivesTheExteriorWheelsAgainstEachOther) {
   const Params params;
   MotionController controller(params);

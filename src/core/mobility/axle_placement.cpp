@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -83,6 +84,42 @@ AxleFactors two_joint_axle_factors(const AxleDistanceRates& rates, double epsilo
   const double denominator = 2.0 * (f * f + r * r);
   return {(f * f + (2.0 * epsilon - 1.0) * f * r + 2.0 * epsilon * r * r) / denominator,
           (2.0 * (1.0 - epsilon) * f * f + (1.0 - 2.0 * epsilon) * f * r + r * r) / denominator};
+}
+
+AxleFactors uphill_axle_factors(const AxleDistanceRates& rates, double epsilon, double uphill) {
+  constexpr std::string_view kWhere = "uphill_axle_factors";
+  // Validates the rates and ε (and is the answer for still joints).
+  const AxleFactors even = two_joint_axle_factors(rates, epsilon);
+  if (uphill != 1.0 && uphill != -1.0) {
+    std::ostringstream message;
+    message << kWhere << ": uphill (u) must be +1 or -1, got " << uphill;
+    throw std::invalid_argument(message.str());
+  }
+  const double scale = std::max(std::abs(rates.front_mps), std::abs(rates.rear_mps));
+  if (scale == 0.0) return even;
+  const double f = rates.front_mps / scale;
+  const double r = rates.rear_mps / scale;
+  const double q = uphill > 0.0 ? std::min(f, r) : std::max(f, r);
+  // The line's point nearest to (ε, 1 − ε), then along the line (direction (−r, f)) to the
+  // nearest point inside the square.
+  const double norm = f * f + r * r;
+  const double shift = (q - (epsilon * f + (1.0 - epsilon) * r)) / norm;
+  const double front0 = epsilon + shift * f;
+  const double rear0 = (1.0 - epsilon) + shift * r;
+  double low = -std::numeric_limits<double>::infinity();
+  double high = std::numeric_limits<double>::infinity();
+  const auto keep_inside = [&](double start, double direction) {
+    if (direction == 0.0) return;
+    const double a = (0.0 - start) / direction;
+    const double b = (1.0 - start) / direction;
+    low = std::max(low, std::min(a, b));
+    high = std::min(high, std::max(a, b));
+  };
+  keep_inside(front0, -r);
+  keep_inside(rear0, f);
+  // low ≤ high but for rounding where the line only touches a corner of the square.
+  const double t = low <= high ? std::clamp(0.0, low, high) : 0.5 * (low + high);
+  return {std::clamp(front0 - t * r, 0.0, 1.0), std::clamp(rear0 + t * f, 0.0, 1.0)};
 }
 
 ExteriorAxleVelocities exterior_axle_velocities(const AxleDistanceRates& rates,

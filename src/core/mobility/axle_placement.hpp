@@ -68,6 +68,22 @@ AxleDistanceRates axle_distance_rates(double front_joint_position_rad,
 // The printed ρf, ρr for the rates and ε ∈ [0, 1] (the desired ρf).
 AxleFactors two_joint_axle_factors(const AxleDistanceRates& rates, double epsilon);
 
+// On a slope (our extension, docs/decisions.md "Rolking's placement on a slope"): the joints'
+// mismatch goes uphill. The printed formula's q = (yf + yr)/2 splits a mismatch yf ≠ yr evenly,
+// af = (yr − yf)/2 = −ar: one anchor is asked downhill. On soft sand an anchor asked downhill
+// rolls down with the slope's pull and gives up the soil it had sheared, and the other, asked
+// uphill, cannot follow: the rover loses ground at every stroke (docs/simulator.md, "Rolking's
+// anchors on a slope"). With u = +1 when forward is uphill (σ > 0) and −1 when backward is, q is
+// chosen so that neither anchor moves downhill, u·af ≥ 0 and u·ar ≥ 0, and as near the even
+// split as that allows:
+//   q = min(yf, yr) for u = +1,   q = max(yf, yr) for u = −1,
+// so the centre advances at the faster joint's rate (u = +1) and the slower joint's anchor is
+// asked uphill by the difference; equal rates give the printed formula's motion. ρ is the point
+// of the line ρf·yf + ρr·yr = q inside [0, 1]² nearest to (ε, 1 − ε) (the line always crosses
+// the square for these q). Throws std::invalid_argument for non-finite rates, ε outside [0, 1]
+// or u not ±1.
+AxleFactors uphill_axle_factors(const AxleDistanceRates& rates, double epsilon, double uphill);
+
 // af, ar above [m/s]: the forward velocities of the front and rear exterior axles.
 struct ExteriorAxleVelocities {
   double front_mps = 0.0;  // af

@@ -30,6 +30,10 @@ void check_input(const GaitInput& input) {
     checks::law::require_finite(*input.rear_measured_radps, kWhere, "rear_measured_radps (w7)");
   }
   checks::law::require_positive(input.period_s, kWhere, "period_s (h)");
+  if (input.uphill != 0.0 && input.uphill != 1.0 && input.uphill != -1.0) {
+    throw std::invalid_argument(std::string(kWhere) + ": uphill must be 0, +1 or -1, got " +
+                                std::to_string(input.uphill));
+  }
   const auto check_bounds = [](const std::optional<JointBounds>& bounds, const char* min_name,
                                const char* max_name) {
     if (!bounds) return;
@@ -185,7 +189,8 @@ AxleFactors GaitSequencer::segment_factors(const GaitInput& input) const {
       axle_distance_rates(input.front_joint.position, input.rear_joint.position,
                           input.front_measured_radps.value_or(input.front_joint.velocity),
                           input.rear_measured_radps.value_or(input.rear_joint.velocity), geometry_);
-  return two_joint_axle_factors(rates, rule.epsilon);
+  return input.uphill == 0.0 ? two_joint_axle_factors(rates, rule.epsilon)
+                            : uphill_axle_factors(rates, rule.epsilon, input.uphill);
 }
 
 double GaitSequencer::joint_control(const control::MotionState& state, double target_rad,

@@ -26,7 +26,8 @@
 // - s = 0 holds: no state change, and (4.14) brings both joints to rest (v_d = 0, full C, same
 //   clip). The targets stay.
 // - ρf, ρr follow the rule of the segment's `to` state in both directions (running a transition
-//   backward undoes it with the same axle placement); the ε-formula uses the measured w6, w7.
+//   backward undoes it with the same axle placement); the ε-formula uses the measured w6, w7,
+//   and on a slope (input.uphill ≠ 0) takes the joints' mismatch uphill (axle_placement.hpp).
 // - The driving intent ϱ (Remark 5.5) is latched when the gait starts and re-read at each state
 //   change: backward mirrors the table (gait_table.hpp). Held joints keep the (5.3)-clamped
 //   position measured then, as far as the behaviours' bounds of each cycle allow.
@@ -66,6 +67,9 @@ struct GaitInput {
   // backlash margin; each within (5.3) and min ≤ max. None: (5.3) alone.
   std::optional<JointBounds> front_bounds{};
   std::optional<JointBounds> rear_bounds{};
+  // On a slope +1 when forward is uphill, −1 when backward is: the ε-formula's states then take
+  // the joints' mismatch uphill (uphill_axle_factors). 0: the printed formula.
+  double uphill = 0.0;
 };
 
 struct GaitOutput {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -177,12 +178,88 @@ TEST(AxlePlacement, EpsilonFormulaMayLeaveTheUnitInterval) {
   EXPECT_NEAR(two_joint_axle_factors({1.0, 3.0}, 0.0).front, -0.1, 1e-15);
 }
 
+// On a slope the mismatch goes uphill: yf = 0.02, yr = 0.01 m/s (the front joint contracting
+// faster), forward uphill. q = min = 0.01: the front anchor stands (af = yr − q = 0), the rear is
+// asked uphill by the difference (ar = yf − q = 0.01), the centre advances at the faster joint's
+// 0.02. ρ: the line ρf + ρr/2 = 1/2 (rates over the larger) nearest to (½, ½) is
+// (½, ½) − 0.2·(1, ½) = (0.3, 0.4). Backward uphill, q = max = 0.02: the front anchor goes back
+// (uphill) by 0.01, the rear stands, (½, ½) + 0.2·(1, ½) = (0.7, 0.6). The printed formula
+// instead asks one anchor downhill: af = −0.005.
+TEST(AxlePlacement, OnASlopeTheJointsMismatchGoesUphill) {
+  const AxleDistanceRates rates{0.02, 0.01};
+  const AxleFactors up = uphill_axle_factors(rates, 0.5, 1.0);
+  EXPECT_NEAR(up.front, 0.3, 1e-15);
+  EXPECT_NEAR(up.rear, 0.4, 1e-15);
+  const ExteriorAxleVelocities up_axles = exterior_axle_velocities(rates, up);
+  EXPECT_NEAR(up_axles.front_mps, 0.0, 1e-17);
+  EXPECT_NEAR(up_axles.rear_mps, 0.01, 1e-17);
+  const AxleFactors down = uphill_axle_factors(rates, 0.5, -1.0);
+  EXPECT_NEAR(down.front, 0.7, 1e-15);
+  EXPECT_NEAR(down.rear, 0.6, 1e-15);
+  const ExteriorAxleVelocities down_axles = exterior_axle_velocities(rates, down);
+  EXPECT_NEAR(down_axles.front_mps, -0.01, 1e-17);
+  EXPECT_NEAR(down_axles.rear_mps, 0.0, 1e-17);
+  EXPECT_NEAR(exterior_axle_velocities(rates, two_joint_axle_factors(rates, 0.5)).front_mps,
+              -0.005, 1e-17);
+  // Equal rates: the printed formula's motion (q is the mean either way).
+  const AxleFactors equal = uphill_axle_factors({0.013, 0.013}, 0.5, 1.0);
+  EXPECT_NEAR(equal.front, 0.5, 1e-15);
+  EXPECT_NEAR(equal.rear, 0.5, 1e-15);
+  // Still joints: (ε, 1 − ε).
+  const AxleFactors still = uphill_axle_factors({0.0, 0.0}, 0.25, -1.0);
+  EXPECT_EQ(still.front, 0.25);
+  EXPECT_EQ(still.rear, 0.75);
+}
+
+// Every pair of rates, ε and side: ρ in [0, 1]², no anchor asked downhill, q at the uphill end
+// (the centre at the faster joint's rate forward-uphill, the slower's backward-uphill), and ρ the
+// point of that line inside the square nearest to (ε, 1 − ε) (a scan along the line).
+TEST(AxlePlacement, UphillFactorsAskNoAnchorDownhillAndStayNearEpsilon) {
+  std::mt19937 random(71);
+  std::uniform_real_distribution<double> rate(-1.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    AxleDistanceRates rates{rate(random), rate(random)};
+    if (i % 10 == 0) rates.rear_mps = 0.0;  // one joint still
+    if (i % 10 == 1) rates.rear_mps = rates.front_mps;
+    const double epsilon = i % 10 == 2 ? 1.0 : unit(random);
+    const double uphill = i % 2 == 0 ? 1.0 : -1.0;
+    SCOPED_TRACE(i);
+    const AxleFactors rho = uphill_axle_factors(rates, epsilon, uphill);
+    ASSERT_GE(rho.front, 0.0);
+    ASSERT_LE(rho.front, 1.0);
+    ASSERT_GE(rho.rear, 0.0);
+    ASSERT_LE(rho.rear, 1.0);
+    const ExteriorAxleVelocities axles = exterior_axle_velocities(rates, rho);
+    ASSERT_GE(uphill * axles.front_mps, -1e-15);
+    ASSERT_GE(uphill * axles.rear_mps, -1e-15);
+    const double q = rho.front * rates.front_mps + rho.rear * rates.rear_mps;
+    const double wanted = uphill > 0.0 ? std::min(rates.front_mps, rates.rear_mps)
+                                       : std::max(rates.front_mps, rates.rear_mps);
+    ASSERT_NEAR(q, wanted, 1e-14);
+    // Along the line through ρ (direction (yr, −yf)/|y|), inside the square, no point is nearer.
+    const double norm = std::hypot(rates.front_mps, rates.rear_mps);
+    const double distance = std::hypot(rho.front - epsilon, rho.rear - (1.0 - epsilon));
+    for (int k = -2000; k <= 2000; ++k) {
+      const double t = 0.001 * k;
+      const AxleFactors point{rho.front + t * rates.rear_mps / norm,
+                              rho.rear - t * rates.front_mps / norm};
+      if (point.front < 0.0 || point.front > 1.0 || point.rear < 0.0 || point.rear > 1.0) continue;
+      ASSERT_GE(std::hypot(point.front - epsilon, point.rear - (1.0 - epsilon)), distance - 1e-12)
+          << t;
+    }
+  }
+}
+
 TEST(AxlePlacement, RejectsInvalidInputsNamingThem) {
   expect_invalid_argument([] { driving_intent(DrivingIntent::kForward, kNaN); }, {"v1ᵈ"});
   expect_invalid_argument([] { two_joint_axle_factors({kNaN, 0.0}, 0.5); }, {"yf"});
   expect_invalid_argument([] { two_joint_axle_factors({0.0, kInfinity}, 0.5); }, {"yr"});
   expect_invalid_argument([] { two_joint_axle_factors({0.0, 0.0}, 1.5); }, {"epsilon", "[0, 1]"});
   expect_invalid_argument([] { exterior_axle_velocities({0.0, 0.0}, {kNaN, 0.0}); }, {"ρf"});
+  expect_invalid_argument([] { uphill_axle_factors({0.1, 0.2}, 0.5, 0.0); }, {"uphill", "+1 or -1"});
+  expect_invalid_argument([] { uphill_axle_factors({kNaN, 0.2}, 0.5, 1.0); }, {"yf"});
+  expect_invalid_argument([] { uphill_axle_factors({0.1, 0.2}, -0.5, 1.0); }, {"epsilon"});
   expect_invalid_argument([] { axle_distance_rates(-2.0, 2.0, 0.0, kNaN, GeometryParams{}); },
                           {"w7"});
   expect_invalid_argument([] { front_clearance_intent(kNaN); }, {"w6"});

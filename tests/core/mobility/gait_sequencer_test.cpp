@@ -34,10 +34,11 @@ struct Rover {
   GaitOutput last;
   std::optional<JointBounds> front_bounds;  // the behaviours' bounds (6.4), none: (5.3) alone
   std::optional<JointBounds> rear_bounds;
+  double uphill = 0.0;  // GaitInput::uphill
 
   GaitOutput cycle(Gait gait, double speed, DrivingIntent intent = DrivingIntent::kForward) {
     last = sequencer.update({gait, speed, intent, front, rear, kPeriodS, std::nullopt,
-                             std::nullopt, front_bounds, rear_bounds});
+                             std::nullopt, front_bounds, rear_bounds, uphill});
     if (last.active) {
       const control::ControlParams model{0.4, kFullSpeedRadps, kPeriodS};
       front = control::step(front, last.front_control_radps, model);
@@ -431,6 +432,39 @@ TEST(GaitSequencer, NoRoomInsideTheBoundsHoldsAtTheReachedState) {
   EXPECT_EQ(rover.last.rear_target_rad, 2.55);
 }
 
+// On a slope the ε-formula's states take the joints' mismatch uphill (uphill_axle_factors); the
+// states with a fixed ρ keep it. Rolking's first stroke from contracted joints, (C,C) → (C,E),
+// moves the rear joint alone (yf = 0, yr > 0): the printed formula gives (½, ½), the rear anchor
+// rolled back by yr/2; forward uphill ρr = 0 (q = min(0, yr) = 0: the rear axle stands, the front
+// and centre advance by yr), backward uphill ρr = 1 (q = yr: the rear axle goes back, uphill).
+// ρf stays ½, the nearest to ε: the front joint does not move. The next stroke, to (E,C), has
+// ρ = (1, 1) on any ground, and front-wheel walking's fixed ρ are the flat ground's.
+TEST(GaitSequencer, OnASlopeTheEpsilonStatesTakeTheMismatchUphill) {
+  for (const double uphill : {0.0, 1.0, -1.0}) {
+    SCOPED_TRACE(uphill);
+    Rover rover;
+    rover.uphill = uphill;
+    for (int k = 0; k < 30; ++k) rover.cycle(Gait::kRolking, 1.0);
+    ASSERT_EQ(rover.last.state_index, 0u);
+    ASSERT_GT(rover.rear.velocity, 0.1);
+    ASSERT_EQ(rover.front.velocity, 0.0);
+    EXPECT_EQ(rover.last.factors.front, 0.5);
+    EXPECT_EQ(rover.last.factors.rear, uphill == 0.0 ? 0.5 : (uphill > 0.0 ? 0.0 : 1.0));
+    run_states(rover, Gait::kRolking, 1.0, DrivingIntent::kForward, 1);
+    ASSERT_EQ(rover.last.state_index, 1u);
+    EXPECT_EQ(rover.last.factors.front, 1.0);
+    EXPECT_EQ(rover.last.factors.rear, 1.0);
+    Rover sloped, flat;
+    sloped.uphill = uphill;
+    for (int k = 0; k < 300; ++k) {
+      const AxleFactors on_slope = sloped.cycle(Gait::kFrontWheelWalking, 1.0).factors;
+      const AxleFactors on_flat = flat.cycle(Gait::kFrontWheelWalking, 1.0).factors;
+      ASSERT_EQ(on_slope.front, on_flat.front) << k;
+      ASSERT_EQ(on_slope.rear, on_flat.rear) << k;
+    }
+  }
+}
+
 TEST(GaitSequencer, RejectsInvalidInputsNamingThem) {
   GaitSequencer sequencer{GeometryParams{}, JointParams{}, GaitParams{}, MotorParams{}};
   GaitInput input{Gait::kRolking, 0.5, DrivingIntent::kForward, {-1.5, 0.0}, {1.5, 0.0}, kPeriodS};
@@ -451,6 +485,9 @@ TEST(GaitSequencer, RejectsInvalidInputsNamingThem) {
   input.rear_bounds.reset();
   input.front_bounds = JointBounds{-2.55, kNaN};
   expect_invalid_argument([&] { sequencer.update(input); }, {"front_bounds.max_rad (p6_max)"});
+  input.front_bounds.reset();
+  input.uphill = 0.5;
+  expect_invalid_argument([&] { sequencer.update(input); }, {"uphill", "0, +1 or -1"});
   MotorParams stopped;
   stopped.max_no_load_speed_radps = 0.0;
   expect_invalid_argument(
