@@ -353,6 +353,57 @@ TEST(SoftSoil, AWheelDraggedWithoutTurningResistsWithMoreThanTheSoilsFriction) {
   }
 }
 
+// A gait's anchor on a slope (rolking's centre stroke, docs/simulator.md "Rolking's anchors on a
+// slope"): a wheel drives 16 cm (20 % slip), stands 1 s at the end of its rut, then is dragged
+// back into the rut at 2 cm/s, as the slope's pull drags an anchor. Locked (not turning), the
+// blades shear the soil under it: within 2 cm (2K) it resists with more than the soil's friction
+// along the bladed rim, tan φ·cos² i + tan δ·sin² i = 0.515 (as dragged through fresh soil,
+// above; 0.84–0.86 measured). Rolling back with its travel (the rim at the travel's speed, no
+// slip) the blades shear nothing new: the shear the drive had loaded unloads, and it resists with
+// less than that friction (0.30–0.33 at 2 cm, falling to the rut's compaction resistance, 0.16 at
+// 6 cm). A light exterior wheel (59 N) and a sixth of the rover (134 N).
+TEST(SoftSoil, AnAnchorHeldStillGripsWhereOneRollingBackGivesWay) {
+  const SoilParams sand = dry_sand();
+  const WheelGeometry geometry;
+  const double i = geometry.blade_inclination_rad;
+  const double friction = std::tan(sand.friction_angle_rad) * std::cos(i) * std::cos(i) +
+                          std::tan(sand.soil_metal_friction_angle_rad) * std::sin(i) * std::sin(i);
+  for (const double mass_kg : {6.0, kWheelMassKg}) {
+    for (const bool rolling : {false, true}) {
+      SCOPED_TRACE(mass_kg);
+      SCOPED_TRACE(rolling);
+      SoftSoil soil(sand, {-1.0, -0.3, 0.01, 300, 60}, [](double, double) { return 0.0; },
+                    {geometry});
+      const double rs = geometry.shear_radius_m();
+      double x = -0.5, z = 0.115, vz = 0.0, start_x = 0.0, ratio = 0.0;
+      for (int k = 0; k < 8000; ++k) {  // 1 s set down, 3 s driving, 1 s standing, 3 s back
+        double speed = 0.0, spin = 0.0;
+        if (k >= 1000 && k < 4000) {
+          spin = 1.0;
+          speed = 0.8 * rs * spin;
+        } else if (k >= 5000) {
+          speed = -0.02;
+          spin = rolling ? speed / rs : 0.0;
+        }
+        if (k == 5000) start_x = x;
+        const WheelKinematics wheel{{x, 0.0, z}, {0.0, 1.0, 0.0}, {speed, 0.0, vz}, spin};
+        const WheelWrench w = soil.step({&wheel, 1}, kDt)[0];
+        vz += (w.force_n[2] - mass_kg * 9.81 - 300.0 * vz) / mass_kg * kDt;
+        z += vz * kDt;
+        x += speed * kDt;
+        if (k >= 5000 && start_x - x >= 0.02 && ratio == 0.0) {  // dragged back 2 cm
+          ratio = w.force_n[0] / w.force_n[2];
+        }
+      }
+      if (rolling) {
+        EXPECT_LT(ratio, friction);
+      } else {
+        EXPECT_GT(ratio, friction);
+      }
+    }
+  }
+}
+
 TEST(SoftSoil, SameInputsGiveIdenticalBits) {
   const auto run = [] {
     SoftSoil soil = one_wheel_on_flat_sand();
