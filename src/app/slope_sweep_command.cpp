@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -42,6 +43,10 @@ CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args) {
       ->check(finite_range(0.1, 10.0));
   cmd->add_option("--drive", args.drive_radps, "v1 when driving, rad/s (default 1.0)")
       ->check(finite_range(0.01, 100.0));
+  cmd->add_option("--modes", args.modes,
+                  "the modes to sweep, comma-separated: driving, rolking, front-wheel-walking, "
+                  "rear-wheel-walking, worm-like, rolking-extended-base (default: all)")
+      ->delimiter(',');
   return cmd;
 }
 
@@ -64,6 +69,19 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
         << config.params.operator_input.max_drive_speed_radps << "\n";
     return kUsageError;
   }
+  std::vector<mobility::Gait> modes;
+  for (const std::string& name : args.modes) {
+    const std::optional<mobility::Gait> gait =
+        name == "driving" ? std::optional{mobility::Gait::kNone} : mobility::gait_from_id(name);
+    if (!gait) {
+      err << "marsokhod slope-sweep: --modes: unknown mode \"" << name
+          << "\"; use driving, rolking, front-wheel-walking, rear-wheel-walking, worm-like or "
+             "rolking-extended-base\n";
+      return kUsageError;
+    }
+    if (std::find(modes.begin(), modes.end(), *gait) == modes.end()) modes.push_back(*gait);
+  }
+  if (modes.empty()) modes.assign(mobility::kAllGaits.begin(), mobility::kAllGaits.end());
   const double repose_deg = ground->soil->repose_angle_rad * 180.0 / std::numbers::pi;
   runner::ClimbSpec spec;
   spec.ground = *ground;
@@ -93,7 +111,7 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
   std::optional<double> driving_deg, best_gait_deg;
   bool past_repose = false;
   try {
-    for (const mobility::Gait gait : mobility::kAllGaits) {
+    for (const mobility::Gait gait : modes) {
       std::string tried;
       const runner::SteepestClimb found = runner::find_steepest(
           [&](double angle_deg) {
@@ -129,9 +147,11 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
     err << "marsokhod slope-sweep: " << e.what() << "\n";
     return kUsageError;
   }
-  out << "wheel walking out-climbs driving: "
-      << (best_gait_deg && driving_deg && *best_gait_deg > *driving_deg ? "yes" : "no") << "\n"
-      << "nothing climbed past the angle of repose: " << (past_repose ? "no" : "yes") << "\n";
+  if (driving_deg && best_gait_deg) {  // both swept
+    out << "wheel walking out-climbs driving: "
+        << (*best_gait_deg > *driving_deg ? "yes" : "no") << "\n";
+  }
+  out << "nothing climbed past the angle of repose: " << (past_repose ? "no" : "yes") << "\n";
   return 0;
 }
 

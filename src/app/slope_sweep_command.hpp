@@ -1,11 +1,13 @@
 // `marsokhod slope-sweep [--ground NAME] [--seed S] [--distance M] [--time S] [--window W]
-// [--step DEG] [--drive V1]`: the steepest slope of a soft soil the simulated rover climbs by
-// driving and by each gait (runner/slope_sweep.hpp), printed as a table beside [KG92]'s figures.
+// [--step DEG] [--drive V1] [--modes LIST]`: the steepest slope of a soft soil the simulated rover
+// climbs by driving and by each gait (runner/slope_sweep.hpp), printed as a table beside [KG92]'s
+// figures; --modes names the ones to sweep (driving and gait ids, comma-separated; default all).
 #pragma once
 
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "config/loaded_config.hpp"
 
@@ -23,6 +25,7 @@ struct SlopeSweepArgs {
   double window_s = 0.0;  // 0: the advance over the whole climb; > 0: what it still gains at the end
   double step_deg = 0.5;
   double drive_radps = 1.0;
+  std::vector<std::string> modes;  // "driving" and gait ids; empty: driving and every gait
 };
 
 // Adds the subcommand to `cli`, filling `args` (the caller adds --seed with its seed check).

@@ -148,6 +148,30 @@ TEST(Cli, SlopeSweepRefusesRigidGroundAndBadNumbers) {
   EXPECT_NE(r.err.find("--window"), std::string::npos) << r.err;
 }
 
+// --modes sweeps the modes named, each once, in the order given; an unknown one is refused. Without
+// driving the table says nothing of wheel walking against it. (Coarse steps and 1 s climbs: only
+// the rows are looked at here.)
+TEST(Cli, SlopeSweepSweepsTheModesNamed) {
+  Result r = cli({"--config", kConfig.c_str(), "slope-sweep", "--modes", "rolking,walking"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--modes: unknown mode \"walking\"; use driving, rolking"),
+            std::string::npos)
+      << r.err;
+  r = cli({"--config", kConfig.c_str(), "slope-sweep", "--modes", "worm-like,rolking,worm-like",
+           "--step", "10", "--time", "1", "--distance", "0.001"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::size_t worm = r.out.find("| worm-like |");
+  const std::size_t rolking = r.out.find("| rolking |");
+  EXPECT_NE(worm, std::string::npos) << r.out;
+  EXPECT_NE(rolking, std::string::npos) << r.out;
+  EXPECT_LT(worm, rolking) << r.out;
+  EXPECT_EQ(r.out.find("| worm-like |", worm + 1), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("| driving |"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("out-climbs driving"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("nothing climbed past the angle of repose: yes"), std::string::npos)
+      << r.out;
+}
+
 // CLI11's range checks compare, and every comparison with NaN is false: "--duration nan" ran
 // without an end and "--distance nan" swept for nothing. Every real-valued option refuses a
 // number that is not finite, naming the option, and one out of its bounds with the bounds.
