@@ -195,11 +195,13 @@ TEST(ShippedScenarios, OnSoftSandLoadDistributionClimbsFurther) {
 // rolking at full gait speed ("we compared different wheel walking modes with plain driving when
 // moving uphill on sand: wheel walking caused significantly less erosion", Field Experiment 6.6).
 // On 8°, which both climb (the slope sweep's windowed steepest on unit 1: driving 12.5°, rolking
-// 11.0°), on seeds 1–4 (2026-12-01) driving climbs 2.44–2.57 m and rolking 0.13–0.15 m; driving
-// disturbs 4 times as much soil in all (0.021 against 0.005 m³: its six wheels slip through the
-// sand the whole time, rolking's mostly stand) and a quarter as much per metre climbed (0.008
-// against 0.038 m³/m). So wheel walking erodes less in all, as the thesis found, but not per metre
-// and it does not out-climb driving here. (Until soil laid back in a rut lay loose there,
+// 16.0°), on seeds 1–4 (2026-12-02) driving climbs 2.44–2.57 m and rolking 0.40–0.42 m; driving
+// disturbs 2.6–2.8 times as much soil in all (0.021 against 0.0076–0.0081 m³: its six wheels slip
+// through the sand the whole time, rolking's mostly stand) and less than half as much per metre
+// climbed (0.008–0.009 against 0.018–0.020 m³/m). So wheel walking erodes less in all, as the
+// thesis found, but not per metre, and on a slope both climb driving is the faster by far.
+// (Before rolking's slope placement, 2026-12-02, rolking climbed 0.13–0.15 m here, disturbing
+// 0.005 m³, 0.038 m³/m.) (Until soil laid back in a rut lay loose there,
 // 2026-12-01, this ran on 12°, where rolking then climbed 0.02–0.10 m on the rut's raised level;
 // now it slides back 0.2–1.5 cm there.)
 Scenario soft_sand_climb(const std::string& name, const std::string& targets) {
