@@ -160,11 +160,9 @@ MotionController::JointCommands MotionController::joint_commands(const MotionInp
   const JointBoundsStatus& b = status.joint_bounds;
   // On a slope (|σ| at least the slant dead band, as for the slope hold) the ε-formula's strokes
   // ask no anchor downhill (axle_placement.hpp).
-  const BehaviourParams& behaviours = params_->behaviours;
-  const double uphill =
-      behaviours.slope_placement && std::abs(status.slope_rad) >= behaviours.slant_deadband_rad
-          ? (status.slope_rad > 0.0 ? 1.0 : -1.0)
-          : 0.0;
+  const double uphill = params_->behaviours.slope_placement
+                            ? behaviour::uphill_side(status.slope_rad, params_->behaviours)
+                            : 0.0;
   const mobility::GaitOutput gait = gait_.update(
       {input.targets.gait, input.targets.gait_speed, intent_, front, rear, input.period_s,
        status.motors[kFrontJoint].velocity_radps, status.motors[kRearJoint].velocity_radps,
@@ -312,8 +310,7 @@ behaviour::JointBounds MotionController::update_slope_and_bounds(const MotionInp
   status.slope_rad = slope_.slope_rad();
   // Slopes within the dead band count as flat: noise and bumps must not move the joints. Beyond
   // it γ(σ) applies unchanged; (4.16) smooths the step of the bound at the threshold.
-  const double slope =
-      std::abs(status.slope_rad) < params_->behaviours.slant_deadband_rad ? 0.0 : status.slope_rad;
+  const double slope = behaviour::slope_beyond_dead_band(status.slope_rad, params_->behaviours);
   const behaviour::JointBounds bounds =
       with_backlash_margin(behaviour::slant_joint_bounds(slope, params_->joints,
                                                          params_->geometry, settings.switches),

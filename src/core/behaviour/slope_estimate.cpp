@@ -84,4 +84,13 @@ double SlopeEstimate::slope_rad() const {
   return terrain_slope_rad(gravity_.direction(), 0.0, 0.0) + correction_rad_;
 }
 
+double slope_beyond_dead_band(double slope_rad, const BehaviourParams& params) {
+  return std::abs(slope_rad) < params.slant_deadband_rad ? 0.0 : slope_rad;
+}
+
+double uphill_side(double slope_rad, const BehaviourParams& params) {
+  const double slope = slope_beyond_dead_band(slope_rad, params);
+  return slope > 0.0 ? 1.0 : (slope < 0.0 ? -1.0 : 0.0);
+}
+
 }  // namespace marsokhod::behaviour

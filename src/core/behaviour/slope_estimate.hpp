@@ -39,6 +39,8 @@
 
 #include <array>
 
+#include "core/params.hpp"
+
 namespace marsokhod::behaviour {
 
 using Vector3 = std::array<double, 3>;
@@ -94,5 +96,12 @@ class SlopeEstimate {
   GravityEstimate gravity_;
   double correction_rad_ = 0.0;
 };
+
+// 6.2.1's dead band: σ within it (|σ| < slant_deadband_rad) counts as flat, 0; beyond it σ as it
+// is. The slant response (6.4), the slope hold and rolking's slope placement all read σ so.
+double slope_beyond_dead_band(double slope_rad, const BehaviourParams& params);
+
+// The uphill side of that σ: +1 when forward is uphill, −1 when backward is, 0 on flat ground.
+double uphill_side(double slope_rad, const BehaviourParams& params);
 
 }  // namespace marsokhod::behaviour

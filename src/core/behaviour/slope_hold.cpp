@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/behaviour/slope_estimate.hpp"
 #include "core/checks/checks.hpp"
 
 namespace marsokhod::behaviour {
@@ -22,13 +23,11 @@ MotorVector SlopeHold::update(const MotorVector& velocity_radps, const MotorVect
     checks::require_finite(planned_radps[i], kFunction, checks::Element{"planned_radps", i});
   }
   MotorVector term{};
-  const bool on = gait_running && params.slope_hold_gain_per_s > 0.0 &&
-                  std::abs(slope_rad) >= params.slant_deadband_rad;
-  if (!on) {
+  const double uphill = uphill_side(slope_rad, params);
+  if (!gait_running || params.slope_hold_gain_per_s <= 0.0 || uphill == 0.0) {
     lost_rad_ = {};
     return term;
   }
-  const double uphill = slope_rad > 0.0 ? 1.0 : -1.0;
   for (std::size_t i = 0; i < kWheelCount; ++i) {
     const double lost = lost_rad_[i] + period_s * uphill * (planned_radps[i] - velocity_radps[i]);
     lost_rad_[i] = std::clamp(lost, 0.0, params.slope_hold_max_rad);

@@ -42,6 +42,21 @@ Vector3 one_step(const Vector3& reading_mps2, double lambda) {
 }
 
 // On flat ground a = (0, 0, −9.81) and g stays g⁰ = (0, 0, −1): σ = acos(0) − π/2 = 0.
+// 6.2.1's dead band (0.05 rad, ≈ 3°): within it σ counts as flat; from its edge on σ is taken as it
+// is, and its sign says which way is uphill.
+TEST(SlopeEstimate, WithinTheDeadBandASlopeCountsAsFlat) {
+  const BehaviourParams params;
+  ASSERT_EQ(params.slant_deadband_rad, 0.05);
+  for (const double sigma : {0.0, 0.0499, -0.0499}) {
+    EXPECT_EQ(slope_beyond_dead_band(sigma, params), 0.0) << sigma;
+    EXPECT_EQ(uphill_side(sigma, params), 0.0) << sigma;
+  }
+  for (const double sigma : {0.05, 0.35, -0.05, -0.35}) {
+    EXPECT_EQ(slope_beyond_dead_band(sigma, params), sigma) << sigma;
+    EXPECT_EQ(uphill_side(sigma, params), sigma > 0.0 ? 1.0 : -1.0) << sigma;
+  }
+}
+
 TEST(SlopeEstimate, FlatGroundKeepsTheInitialDirection) {
   const Vector3 direction = settle({0.0, 0.0, -kGravityMps2}, 100);
   EXPECT_NEAR(direction[0], 0.0, kTolerance);
