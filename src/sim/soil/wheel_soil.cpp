@@ -41,6 +41,39 @@ inline double sheared(double j, double dj, double inverse_K, double ratio) {
   return unloaded(j, dj, inverse_K, ratio);
 }
 
+// sheared() with the memory of the displacement `peak` at which the soil last began to unload:
+// loading again below it, the soil reloads along the stiff line it unloaded on (ratio/K in the
+// mobilised share per metre) until it is back at the peak, and from there follows
+// Janosi–Hanamoto's curve again. Unloading through 0 forgets the peak.
+[[gnu::noinline]] double reloaded(double j, double& peak, double dj, double inverse_K,
+                                  double ratio) {
+  if (dj == 0.0) return j;
+  if (j == 0.0 ? (peak > 0.0) == (dj > 0.0) : (j > 0.0) == (dj > 0.0)) {  // loading
+    if (peak == 0.0 || (peak > 0.0) != (dj > 0.0) || std::abs(j) >= std::abs(peak)) {
+      peak = 0.0;
+      return j + dj;
+    }
+    const double remaining = exp_nonpositive(-std::abs(j) * inverse_K);
+    const double at_peak = exp_nonpositive(-std::abs(peak) * inverse_K);
+    const double to_peak = (remaining - at_peak) / (ratio * inverse_K);
+    const double d = std::abs(dj);
+    if (d >= to_peak) {
+      const double beyond = peak + std::copysign(d - to_peak, dj);
+      peak = 0.0;
+      return beyond;
+    }
+    return std::copysign(-log_positive(remaining - ratio * d * inverse_K) / inverse_K, dj);
+  }
+  if (j == 0.0) {  // no displacement and no peak this way: loads
+    peak = 0.0;
+    return dj;
+  }
+  if (peak == 0.0 || (peak > 0.0) != (j > 0.0) || std::abs(peak) < std::abs(j)) peak = j;
+  const double out = unloaded(j, dj, inverse_K, ratio);
+  if (out == 0.0 || (out > 0.0) != (j > 0.0)) peak = 0.0;
+  return out;
+}
+
 }  // namespace
 
 // The motion frame in world coordinates: x along the direction the arc lies in, y the axle,
@@ -62,6 +95,7 @@ WheelSoilContact::WheelSoilContact(SoilParams soil, WheelGeometry wheel)
   const auto size = static_cast<std::size_t>(wheel_.lanes * wheel_.arc_samples);
   shear_t_.assign(size, 0.0);
   shear_y_.assign(size, 0.0);
+  peak_t_.assign(size, 0.0);
   cosines_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   sample_sin_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
   sample_cos_.assign(static_cast<std::size_t>(wheel_.arc_samples), 0.0);
@@ -86,9 +120,14 @@ void WheelSoilContact::update_direction(double rim_speed_mps, double travel_spee
   for (int lane = 0; lane < wheel_.lanes; ++lane) {
     double* jt = shear_t_.data() + lane * samples;
     double* jy = shear_y_.data() + lane * samples;
+    double* peak = peak_t_.data() + lane * samples;
     std::reverse(jt, jt + samples);
     std::reverse(jy, jy + samples);
-    for (int k = 0; k < samples; ++k) jt[k] = -jt[k];
+    std::reverse(peak, peak + samples);
+    for (int k = 0; k < samples; ++k) {
+      jt[k] = -jt[k];
+      peak[k] = -peak[k];
+    }
   }
 }
 
@@ -134,19 +173,27 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
   const int first = std::min(whole + 1, samples);  // the first sample fed from within the arc
   const double inverse_K = strength_.inverse_shear_modulus_per_m;
   const double ratio = soil_.unloading_stiffness_ratio;
+  // With the reload memory the tangential state goes through reloaded(), its peak moved with it.
+  double* peak = soil_.tangential_reload_memory ? peak_t_.data() + lane * samples : nullptr;
+  const auto shear_t = [&](double j, double& p, double dj) {
+    return peak != nullptr ? reloaded(j, p, dj, inverse_K, ratio)
+                           : sheared(j, dj, inverse_K, ratio);
+  };
+  double no_peak = 0.0;  // the peak slot without the memory (never read)
   // Four at a time first where AVX2 is, while the samples load (the same bits), the rest one by
   // one.
   int last = samples - 1;
   if (wide::available()) {
     int unloading = 0;
-    last = wide::advect_loading(jt, jy, cosines_.data(), samples, first, whole, fraction,
+    last = wide::advect_loading(jt, jy, peak, cosines_.data(), samples, first, whole, fraction,
                                 spin_term, travel_mps, dt_s, lateral_step, unloading_.data(),
                                 unloading);
     for (int i = 0; i < unloading; ++i) {
       const int k = unloading_[static_cast<std::size_t>(i)] / 2;
       if (unloading_[static_cast<std::size_t>(i)] % 2 == 0) {
         const double cosine = cosines_[static_cast<std::size_t>(k)];
-        jt[k] = sheared(jt[k], (spin_term - travel_mps * cosine) * dt_s, inverse_K, ratio);
+        jt[k] = shear_t(jt[k], peak != nullptr ? peak[k] : no_peak,
+                        (spin_term - travel_mps * cosine) * dt_s);
       } else {
         jy[k] = sheared(jy[k], lateral_step, inverse_K, ratio);
       }
@@ -156,17 +203,20 @@ void WheelSoilContact::advect_lane(int lane, const ContactArc& arc, double spin_
     const int at = k - whole;
     const double value_t = (1.0 - fraction) * jt[at] + fraction * jt[at - 1];
     const double value_y = (1.0 - fraction) * jy[at] + fraction * jy[at - 1];
-    jt[k] = sheared(value_t,
-                    (spin_term - travel_mps * cosines_[static_cast<std::size_t>(k)]) * dt_s,
-                    inverse_K, ratio);
+    double& value_p = peak != nullptr ? peak[k] : no_peak;
+    if (peak != nullptr) value_p = (1.0 - fraction) * peak[at] + fraction * peak[at - 1];
+    jt[k] = shear_t(value_t, value_p,
+                    (spin_term - travel_mps * cosines_[static_cast<std::size_t>(k)]) * dt_s);
     jy[k] = sheared(value_y, lateral_step, inverse_K, ratio);
   }
-  const double entry_t = jt[0], entry_y = jy[0];
+  const double entry_t = jt[0], entry_y = jy[0], entry_p = peak != nullptr ? peak[0] : 0.0;
   for (int k = first - 1; k >= 0; --k) {
     const double from = k - shift;  // in (−0.5, 0]: on the ramp from the entry
     const double ramp = from > -0.5 ? (from + 0.5) / 0.5 : 0.0;
     const double cosine = cosines_[static_cast<std::size_t>(k)];
-    jt[k] = sheared(entry_t * ramp, (spin_term - travel_mps * cosine) * dt_s, inverse_K, ratio);
+    double& value_p = peak != nullptr ? peak[k] : no_peak;
+    if (peak != nullptr) value_p = entry_p * ramp;
+    jt[k] = shear_t(entry_t * ramp, value_p, (spin_term - travel_mps * cosine) * dt_s);
     jy[k] = sheared(entry_y * ramp, lateral_step, inverse_K, ratio);
   }
 }
@@ -394,6 +444,7 @@ WheelWrench WheelSoilContact::step(const WheelKinematics& kinematics, const Vec3
       const auto first = static_cast<std::ptrdiff_t>(lane * wheel_.arc_samples);
       std::fill(shear_t_.begin() + first, shear_t_.begin() + first + wheel_.arc_samples, 0.0);
       std::fill(shear_y_.begin() + first, shear_y_.begin() + first + wheel_.arc_samples, 0.0);
+      std::fill(peak_t_.begin() + first, peak_t_.begin() + first + wheel_.arc_samples, 0.0);
       continue;
     }
     advect_lane(lane, arc, frame.spin_radps, frame.travel_mps, frame.lateral_mps, dt_s);

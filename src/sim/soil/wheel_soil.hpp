@@ -11,8 +11,12 @@
 // ω (semi-Lagrangian, stable at any step). j ⊕ dj is elastoplastic: an increment along j (or from
 // j = 0) loads along Janosi–Hanamoto's curve, one against j unloads unloading_stiffness_ratio
 // times stiffer than the curve's start until the mobilised share is 0, the rest loading the other
-// way (Wong's repetitive shear tests unload steeply). Where j grows monotonically from the entry —
-// a driven wheel rolling steadily — this is exactly Wong–Reece's
+// way (Wong's repetitive shear tests unload steeply). Along the rim, soil that unloaded and is
+// loaded the same way again reloads along that stiff line until it is back where it began to
+// unload (the peak, kept per sample and carried with j_t), and only then follows the curve
+// (SoilParams::tangential_reload_memory; unloading through 0 forgets the peak): a still wheel that
+// the chassis shakes by a fraction of a millimetre keeps its grip. Where j grows monotonically
+// from the entry — a driven wheel rolling steadily — this is exactly Wong–Reece's
 //   j_t(θ) = r_s[(θ1 − θ) − (1 − s)(sin θ1 − sin θ)],   j_y(θ) = −v_y (θ1 − θ) / ω,
 // but it needs no slip ratio: at rest Δu = 0 and j integrates the creep, so a still wheel on a
 // slope is held like a spring of stiffness ≈ (c + σ tan φ)/K per unit area, and a locked wheel
@@ -130,6 +134,9 @@ class WheelSoilContact {
   int direction_ = 1;
   double retreat_m_ = 0.0;  // how far the arc has moved back against direction_ (update_direction)
   std::vector<double> shear_t_, shear_y_, cosines_;
+  // Per lane and sample, the tangential displacement at which the soil last began to unload
+  // (0: none); below it the soil reloads as stiffly as it unloaded (reloaded()).
+  std::vector<double> peak_t_;
   // Per arc sample of the lane being summed: sin θ, cos θ, σ, the blades' mobilised shares
   // across and along (scratch of add_lane_stresses).
   std::vector<double> sample_sin_, sample_cos_, sample_sigma_, share_across_, share_along_;

@@ -167,9 +167,9 @@ void rim_clearances(const GridSpec& grid, const double* levels_m, const double* 
   store(clearances_m, ((z - level) - bottom_m) - touch_m);
 }
 
-int advect_loading(double* jt, double* jy, const double* cosines, int samples, int first,
-                   int whole, double fraction, double spin_term, double travel_mps, double dt_s,
-                   double lateral_step_m, int* unloading, int& unloading_count) {
+int advect_loading(double* jt, double* jy, double* peak, const double* cosines, int samples,
+                   int first, int whole, double fraction, double spin_term, double travel_mps,
+                   double dt_s, double lateral_step_m, int* unloading, int& unloading_count) {
   int k = samples - 1;
   unloading_count = 0;
   const Quad lateral = splat(lateral_step_m);
@@ -178,7 +178,13 @@ int advect_loading(double* jt, double* jy, const double* cosines, int samples, i
     const Quad value_t = (1.0 - fraction) * load(jt + at) + fraction * load(jt + at - 1);
     const Quad value_y = (1.0 - fraction) * load(jy + at) + fraction * load(jy + at - 1);
     const Quad step_t = (spin_term - travel_mps * load(cosines + low)) * dt_s;
-    const BitsQuad loads_t = loading(value_t, step_t), loads_y = loading(value_y, lateral);
+    BitsQuad loads_t = loading(value_t, step_t);
+    const BitsQuad loads_y = loading(value_y, lateral);
+    if (peak != nullptr) {
+      const Quad value_p = (1.0 - fraction) * load(peak + at) + fraction * load(peak + at - 1);
+      store(peak + low, value_p);
+      loads_t &= __builtin_bit_cast(BitsQuad, value_p == 0.0);
+    }
     store(jt + low, value_t + step_t);
     store(jy + low, value_y + lateral);
     if (all(loads_t & loads_y)) continue;
@@ -259,8 +265,8 @@ void rim_clearances(const GridSpec&, const double*, const double*, const double*
                     double, double, double, const double*, const double*, double*) {}
 void bladed_sums(const BladedSample&, const double*, const double*, const double*, const double*,
                  const double*, int, BladedSums&) {}
-int advect_loading(double*, double*, const double*, int samples, int, int, double, double, double,
-                   double, double, int*, int& unloading_count) {
+int advect_loading(double*, double*, double*, const double*, int samples, int, int, double, double,
+                   double, double, double, int*, int& unloading_count) {
   unloading_count = 0;
   return samples - 1;
 }

@@ -55,11 +55,13 @@ void rim_clearances(const GridSpec& grid, const double* levels_m, const double* 
 // (its step runs along its displacement, or either is 0); reads before it writes, as the
 // one-by-one loop does in place (whole ≥ 0). A sample that unloads keeps the interpolated value
 // and is listed in `unloading` (2k for jt, 2k + 1 for jy; room for 2·samples) for the caller's
-// unloading branch. Returns the sample it stopped at (the one-by-one loop does it and those
-// before). Only when available().
-int advect_loading(double* jt, double* jy, const double* cosines, int samples, int first,
-                   int whole, double fraction, double spin_term, double travel_mps, double dt_s,
-                   double lateral_step_m, int* unloading, int& unloading_count);
+// unloading branch. With `peak` (the tangential reload memory, else nullptr) the peaks move the
+// same way, peak[k] = (1 − fraction)·peak[k − whole] + fraction·peak[k − whole − 1], and a jt
+// sample whose peak is not 0 is listed too (it may reload), its interpolated value kept. Returns
+// the sample it stopped at (the one-by-one loop does it and those before). Only when available().
+int advect_loading(double* jt, double* jy, double* peak, const double* cosines, int samples,
+                   int first, int whole, double fraction, double spin_term, double travel_mps,
+                   double dt_s, double lateral_step_m, int* unloading, int& unloading_count);
 
 // What a bladed lane's sample k sums into its wrench (WheelSoilContact::add_lane_stresses), the
 // soil's strength and the blades' axes given: with σ = sigmas[k] and the shares across[k],

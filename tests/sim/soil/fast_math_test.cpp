@@ -230,33 +230,37 @@ TEST(WideLoop, TheRimsClearancesAreTheBitsOfOneByOne) {
 
 // The advection's four-wide loop against its definition (wide.hpp), sample by sample: a loading
 // sample takes the interpolated value plus its step, an unloading one keeps the interpolated value
-// and is listed for the caller; it reads only values from before the step (in place).
+// and is listed for the caller; it reads only values from before the step (in place). With the
+// tangential reload memory the peaks move the same way, and a sample with a peak is listed too.
 TEST(WideLoop, TheAdvectionIsTheBitsOfOneByOne) {
   if (!wide::available()) GTEST_SKIP() << "no AVX2 here: the advection goes one by one";
   std::mt19937_64 random(21);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const int samples = 24;
-  int listed = 0;
-  for (int trial = 0; trial < 5000; ++trial) {
-    std::vector<double> jt(samples), jy(samples), cosines(samples);
+  int listed = 0, listed_for_peaks = 0;
+  for (int trial = 0; trial < 10000; ++trial) {
+    const bool memory = trial % 2 == 1;
+    std::vector<double> jt(samples), jy(samples), cosines(samples), peak(samples, 0.0);
     for (int k = 0; k < samples; ++k) {
       jt[k] = k % 9 == 4 ? 0.0 : 0.02 * unit(random) + 0.01;
       jy[k] = k % 7 == 3 ? 0.0 : 0.002 * unit(random);
       cosines[k] = std::cos(0.5 * unit(random));
+      if (memory && k % 5 == 2) peak[k] = 0.03 * unit(random);
     }
     // Mostly under a sample a step (whole = 0), sometimes a few, and up to the whole arc.
-    const int whole = trial % 4 != 0 ? 0 : (trial % 3 == 0 ? (trial / 4) % samples : 1 + trial % 3);
+    const int whole =
+        (trial / 2) % 4 != 0 ? 0 : ((trial / 2) % 3 == 0 ? (trial / 8) % samples : 1 + trial % 3);
     const int first = std::min(whole + 1, samples);
     const double fraction = 0.5 * (1.0 + unit(random));
     const double spin_term = trial % 5 == 0 ? 0.0 : 0.2 * unit(random);
     const double travel = 0.1 * unit(random), dt = 1e-3;
     const double lateral = trial % 6 == 0 ? 0.0 : 1e-4 * unit(random);
-    const std::vector<double> jt0 = jt, jy0 = jy;
+    const std::vector<double> jt0 = jt, jy0 = jy, peak0 = peak;
     std::vector<int> unloading(2 * samples, -1);
     int count = 0;
-    const int last = wide::advect_loading(jt.data(), jy.data(), cosines.data(), samples, first,
-                                          whole, fraction, spin_term, travel, dt, lateral,
-                                          unloading.data(), count);
+    const int last = wide::advect_loading(
+        jt.data(), jy.data(), memory ? peak.data() : nullptr, cosines.data(), samples, first,
+        whole, fraction, spin_term, travel, dt, lateral, unloading.data(), count);
     ASSERT_EQ((samples - 1 - last) % 4, 0);
     ASSERT_LT(last - 3, first);  // it did every whole group of four
     ASSERT_GE(last, first - 1);
@@ -268,12 +272,21 @@ TEST(WideLoop, TheAdvectionIsTheBitsOfOneByOne) {
       const int at = k - whole;
       const double value_t = (1.0 - fraction) * jt0[at] + fraction * jt0[at - 1];
       const double value_y = (1.0 - fraction) * jy0[at] + fraction * jy0[at - 1];
+      const double value_p = (1.0 - fraction) * peak0[at] + fraction * peak0[at - 1];
       const double step_t = (spin_term - travel * cosines[k]) * dt;
-      const double t = loads(value_t, step_t) ? value_t + step_t : value_t;
+      const bool fast_t = loads(value_t, step_t) && (!memory || value_p == 0.0);
+      const double t = fast_t ? value_t + step_t : value_t;
       const double y = loads(value_y, lateral) ? value_y + lateral : value_y;
       ASSERT_EQ(std::bit_cast<std::uint64_t>(jt[k]), std::bit_cast<std::uint64_t>(t)) << k;
       ASSERT_EQ(std::bit_cast<std::uint64_t>(jy[k]), std::bit_cast<std::uint64_t>(y)) << k;
-      if (!loads(value_t, step_t)) expected.push_back(2 * k);
+      if (memory) {
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(peak[k]), std::bit_cast<std::uint64_t>(value_p))
+            << k;
+        if (loads(value_t, step_t) && value_p != 0.0) ++listed_for_peaks;
+      } else {
+        ASSERT_EQ(peak[k], 0.0) << "untouched without the memory";
+      }
+      if (!fast_t) expected.push_back(2 * k);
       if (!loads(value_y, lateral)) expected.push_back(2 * k + 1);
     }
     std::vector<int> got(unloading.begin(), unloading.begin() + count);
@@ -284,9 +297,11 @@ TEST(WideLoop, TheAdvectionIsTheBitsOfOneByOne) {
     for (int k = 0; k <= last; ++k) {
       ASSERT_EQ(jt[k], jt0[k]) << "past what it did";
       ASSERT_EQ(jy[k], jy0[k]) << "past what it did";
+      ASSERT_EQ(peak[k], peak0[k]) << "past what it did";
     }
   }
-  EXPECT_GT(listed, 1000);  // the unloading samples were met
+  EXPECT_GT(listed, 1000);           // the unloading samples were met
+  EXPECT_GT(listed_for_peaks, 200);  // and loading ones with a peak
 }
 
 // A bladed lane's six sums, four-wide, against the formulas of wide.hpp summed lane by lane.

@@ -181,6 +181,42 @@ TEST(WheelSoil, StillWheelIsHeldLikeASpring) {
   EXPECT_LT(held_twice, 2.0 * held);
 }
 
+// The tangential reload memory (SoilParams::tangential_reload_memory): a still wheel crept back
+// 5 mm, then forward 0.2 mm (its soil unloads along the stiff line, ratio/K in the mobilised share
+// per metre) and back 0.2 mm reloads along the same line to the very force it had: the loop
+// closes. Without the memory the reload follows Janosi–Hanamoto's curve from the share the soil
+// fell to, as fresh soil would, and holds less.
+TEST(WheelSoil, SoilThatUnloadedReloadsAlongTheSameLine) {
+  const double sinkage = 0.025;
+  const std::vector<double> lanes(3, sinkage);
+  const std::vector<double> bowl(3, -std::acos(1.0 - sinkage / WheelGeometry{}.rim_radius_m));
+  const auto pull_after = [&](bool memory, double forward_m, double* before_n) {
+    SoilParams sand = dry_sand();
+    sand.tangential_reload_memory = memory;
+    WheelSoilContact contact(sand, WheelGeometry{});
+    const auto creep = [&](double speed_mps, double distance_m) {
+      WheelWrench wrench;
+      const int steps = static_cast<int>(std::lround(distance_m / std::abs(speed_mps) / kDt));
+      for (int i = 0; i < steps; ++i) {
+        wrench = contact.step({{0.0, 0.0, 0.3}, {0.0, 1.0, 0.0}, {speed_mps, 0.0, 0.0}, 0.0}, kUp,
+                              lanes, bowl, kDt);
+      }
+      return wrench.diagnostics.drawbar_pull_n;
+    };
+    *before_n = creep(-0.002, 0.005);
+    const double unloaded_n = creep(+0.002, forward_m);
+    EXPECT_LT(unloaded_n, *before_n);
+    return creep(-0.002, forward_m);
+  };
+  double before_n = 0.0, before_without_n = 0.0;
+  const double reloaded_n = pull_after(true, 0.0002, &before_n);
+  const double reloaded_without_n = pull_after(false, 0.0002, &before_without_n);
+  EXPECT_GT(before_n, 0.1 * kWheelLoadN);  // uphill, against the creep
+  EXPECT_EQ(before_n, before_without_n);   // first loading: the same curve
+  EXPECT_NEAR(reloaded_n, before_n, 1e-9 * before_n);
+  EXPECT_LT(reloaded_without_n, 0.95 * before_n);
+}
+
 // Vertical damping: a wheel sinking at 0.1 m/s is pushed up harder than a still one, by R·A·v; one
 // rising fast is never pulled down into the soil.
 TEST(WheelSoil, VerticalDampingResistsSinkingButNeverSucks) {
