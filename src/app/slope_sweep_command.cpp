@@ -47,6 +47,9 @@ CLI::App* add_slope_sweep_command(CLI::App& cli, SlopeSweepArgs& args) {
                   "the modes to sweep, comma-separated: driving, rolking, front-wheel-walking, "
                   "rear-wheel-walking, worm-like, rolking-extended-base (default: all)")
       ->delimiter(',');
+  cmd->add_flag("--shear-reload-memory", args.shear_reload_memory,
+                "the soil's tangential shear reloads along the line it unloaded on "
+                "(docs/simulator.md, \"The anchors' jitter\"; off by default)");
   return cmd;
 }
 
@@ -85,12 +88,13 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
   const double repose_deg = ground->soil->repose_angle_rad * 180.0 / std::numbers::pi;
   runner::ClimbSpec spec;
   spec.ground = *ground;
+  spec.ground.soil->tangential_reload_memory = args.shear_reload_memory;
   spec.drive_radps = args.drive_radps;
   spec.time_s = args.time_s;
   spec.distance_m = args.distance_m;
   spec.seed = args.seed;
   spec.window_s = args.window_s;
-  char line[320];
+  char line[400];
   char criterion[160];
   if (args.window_s > 0.0) {
     std::snprintf(criterion, sizeof criterion,
@@ -102,10 +106,12 @@ int run_slope_sweep_command(const SlopeSweepArgs& args, const config::LoadedConf
                   args.time_s);
   }
   std::snprintf(line, sizeof line,
-                "slope sweep on %s (angle of repose %.1f°), unit %llu: climbed = %s (driving at "
-                "v1 = %.2f rad/s, gaits at full speed), %.1f° steps\n",
-                args.ground.c_str(), repose_deg, static_cast<unsigned long long>(args.seed),
-                criterion, args.drive_radps, args.step_deg);
+                "slope sweep on %s%s (angle of repose %.1f°), unit %llu: climbed = %s (driving "
+                "at v1 = %.2f rad/s, gaits at full speed), %.1f° steps\n",
+                args.ground.c_str(),
+                args.shear_reload_memory ? " with the shear's reload memory" : "", repose_deg,
+                static_cast<unsigned long long>(args.seed), criterion, args.drive_radps,
+                args.step_deg);
   out << line << "| mode | steepest climbed | [KG92] | angles tried (° climbed/failed, advance) |\n"
       << "|---|---|---|---|\n";
   std::optional<double> driving_deg, best_gait_deg;

@@ -26,6 +26,7 @@ struct SlopeSweepArgs {
   double step_deg = 0.5;
   double drive_radps = 1.0;
   std::vector<std::string> modes;  // "driving" and gait ids; empty: driving and every gait
+  bool shear_reload_memory = false;  // the soil's tangential reload memory (soil_params.hpp)
 };
 
 // Adds the subcommand to `cli`, filling `args` (the caller adds --seed with its seed check).

@@ -172,6 +172,23 @@ TEST(Cli, SlopeSweepSweepsTheModesNamed) {
       << r.out;
 }
 
+// --shear-reload-memory climbs on the soil whose tangential shear reloads along the line it
+// unloaded on, and says so in the table's heading; without it the heading says nothing of it.
+TEST(Cli, SlopeSweepCanClimbWithTheShearsReloadMemory) {
+  const std::vector<const char*> quick = {"--config", kConfig.c_str(), "slope-sweep", "--modes",
+                                          "driving", "--step", "10", "--time", "1",
+                                          "--distance", "0.001"};
+  std::vector<const char*> with = quick;
+  with.push_back("--shear-reload-memory");
+  const Result on = cli(with);
+  ASSERT_EQ(on.status, 0) << on.err;
+  EXPECT_NE(on.out.find("slope sweep on sand with the shear's reload memory"), std::string::npos)
+      << on.out;
+  const Result off = cli(quick);
+  ASSERT_EQ(off.status, 0) << off.err;
+  EXPECT_EQ(off.out.find("reload memory"), std::string::npos) << off.out;
+}
+
 // CLI11's range checks compare, and every comparison with NaN is false: "--duration nan" ran
 // without an end and "--distance nan" swept for nothing. Every real-valued option refuses a
 // number that is not finite, naming the option, and one out of its bounds with the bounds.

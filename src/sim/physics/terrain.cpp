@@ -53,6 +53,14 @@ class TableReader {
     return node == nullptr ? std::array<double, N>{} : checked_numbers<N>(*node, key, min, max);
   }
 
+  std::optional<bool> boolean_or_none(std::string_view key) {
+    const toml::node* node = optional(key);
+    if (node == nullptr) return std::nullopt;
+    const toml::value<bool>* value = node->as_boolean();  // value<bool>() would take a 1 too
+    if (value == nullptr) fail(key, "must be true or false", node);
+    return value->get();
+  }
+
   std::string choice(std::string_view key, std::initializer_list<std::string_view> allowed) {
     const toml::node& node = required(key, "a string");
     const std::optional<std::string> value = node.value<std::string>();
@@ -320,6 +328,13 @@ TerrainSpec terrain_from_toml(const toml::table& terrain_table,
   if (kind == "obstacles") terrain.kind = TerrainKind::kObstacles;
   if (kind == "heightfield") terrain.kind = TerrainKind::kHeightfield;
   terrain.ground = material_from(reader.optional("material"), reader, hard_ground());
+  if (const std::optional<bool> memory = reader.boolean_or_none("shear_reload_memory")) {
+    if (!terrain.ground.soil) {
+      reader.fail("shear_reload_memory",
+                  "applies to a soft soil only (material \"sand\" or \"lunar-soil\")", nullptr);
+    }
+    terrain.ground.soil->tangential_reload_memory = *memory;
+  }
   if (terrain.kind == TerrainKind::kSlope) {
     terrain.slope_rad = reader.number("slope_deg", -kMaxSlopeDeg, kMaxSlopeDeg) * kRadPerDeg;
   }

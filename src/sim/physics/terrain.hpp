@@ -115,6 +115,7 @@ void validate(const TerrainSpec& terrain);
 //   material = "hard" | "sand" | "grass" | "lunar-soil"
 //            | { friction = 0.7, torsional_friction_m = 0.0,
 //                                  rolling_friction_m = 0.01 }           # optional, "hard"
+//   shear_reload_memory = true             # a soft soil only; optional, false (soil_params.hpp)
 //   slope_deg = 15.0                       # kind = "slope": + is uphill driving +x
 //   image = "dunes.pgm"                    # kind = "heightfield": a P2/P5 PGM
 //   size_m = [8.0, 6.0]                    #   its extent along x (columns) and y (rows)

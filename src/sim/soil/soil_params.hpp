@@ -35,13 +35,16 @@ struct SoilParams {
   // ratio times the gap that opens under it (Bekker's curve is for first loading only; SCM and
   // Wong's repetitive-loading tests unload far stiffer). Not from a table: 10.
   double unloading_stiffness_ratio = 10.0;
-  // Along the rim (the tangential shear state), soil that unloaded and is loaded again the same
-  // way reloads along the stiff line it unloaded on until it is back where it began to unload,
+  // Along the rim (the tangential shear state), soil that unloaded and is loaded the same way
+  // again reloads along the stiff line it unloaded on until it is back where it began to unload,
   // and only then follows Janosi–Hanamoto's curve (Masing's rule for cyclic shear, in the form of
-  // Wong's repetitive loading: unloading and reloading share one line). false: it reloads along
-  // the curve from the share it fell to, as from fresh soil (before 2026-12-02: a chassis' jitter
-  // of a millimetre then wiped a still wheel's grip; docs/simulator.md, "The anchors' jitter").
-  bool tangential_reload_memory = true;
+  // Wong's repetitive loading: unloading and reloading share one line). false (the default): it
+  // reloads along the curve from the share it fell to, as from fresh soil, and a chassis' jitter
+  // of a millimetre wipes a still wheel's grip (docs/simulator.md, "The anchors' jitter"). Opt-in
+  // (a scenario's [terrain] shear_reload_memory, slope-sweep --shear-reload-memory) until every
+  // scenario holds with it on every unit: with it, front-wheel-walking-slope-slant-on sticks on
+  // unit 18.
+  bool tangential_reload_memory = false;
   // Vertical damping of the contact, per unit area: σ_d = R·v, v the rim's sinking speed (SCM's
   // damping R, as Chrono's SCM terrain has it; 3e4 Pa·s/m is its demonstrations' value, not a
   // soil measurement). It keeps a rover from bouncing on the soil's elastic unloading.

@@ -78,6 +78,20 @@ TEST(TerrainFromToml, SoftSoils) {
   EXPECT_NO_THROW(validate(field));
 }
 
+// The soil's tangential reload memory (soil_params.hpp) is off unless a soft-soil ground asks for
+// it; a hard ground that asks is refused, as is anything but true or false.
+TEST(TerrainFromToml, ShearReloadMemoryIsAnOptInOfSoftSoils) {
+  const std::string sand = "[terrain]\nkind = \"flat\"\nmaterial = \"sand\"\n";
+  EXPECT_FALSE(read(sand).ground.soil->tangential_reload_memory);
+  EXPECT_TRUE(read(sand + "shear_reload_memory = true\n").ground.soil->tangential_reload_memory);
+  EXPECT_FALSE(
+      read(sand + "shear_reload_memory = false\n").ground.soil->tangential_reload_memory);
+  expect_error(sand + "shear_reload_memory = 1\n", "terrain.shear_reload_memory",
+               "must be true or false");
+  expect_error("[terrain]\nkind = \"flat\"\nshear_reload_memory = true\n",
+               "terrain.shear_reload_memory", "applies to a soft soil only");
+}
+
 TEST(TerrainFromToml, SlopeInDegrees) {
   const TerrainSpec terrain = read("[terrain]\nkind = \"slope\"\nslope_deg = 15\n");
   EXPECT_EQ(terrain.kind, TerrainKind::kSlope);

@@ -48,9 +48,14 @@ double run_vertical_rig(SoftSoil& soil, double spin_radps, double speed_mps, dou
 // a step, gives the same wrenches, bit for bit, as on the one- and two-wide forms alone.
 TEST(SoftSoil, TheFourWideLoopGivesTheTwoWideFormsBits) {
   if (!wide::available()) GTEST_SKIP() << "no AVX2 here: the two-wide form does all the work";
-  const auto run = [](bool four_wide) {
+  for (const bool memory : {false, true}) {  // the tangential reload memory off (default) and on
+  SCOPED_TRACE(memory);
+  const auto run = [memory](bool four_wide) {
     wide::use(four_wide);
-    SoftSoil soil = one_wheel_on_flat_sand();
+    SoilParams sand = dry_sand();
+    sand.tangential_reload_memory = memory;
+    SoftSoil soil(sand, {-1.0, -0.3, 0.01, 300, 60}, [](double, double) { return 0.0; },
+                  {WheelGeometry{}});
     std::vector<WheelWrench> trace;
     run_vertical_rig(soil, 0.0, 0.0, 0.5, &trace);
     run_vertical_rig(soil, 1.0, 0.1, 1.5, &trace);
@@ -82,6 +87,7 @@ TEST(SoftSoil, TheFourWideLoopGivesTheTwoWideFormsBits) {
     }
   }
   EXPECT_GT(four.back().sinkage_m, 0.0);  // it ran in the soil
+  }
 }
 
 // A wheel set down on flat sand settles where Bekker's plate pressure under every point of its rim
