@@ -42,8 +42,8 @@ struct SoilParams {
   // reloads along the curve from the share it fell to, as from fresh soil, and a chassis' jitter
   // of a millimetre wipes a still wheel's grip (docs/simulator.md, "The anchors' jitter"). Opt-in
   // (a scenario's [terrain] shear_reload_memory, slope-sweep --shear-reload-memory) until every
-  // scenario holds with it on every unit: with it, front-wheel-walking-slope-slant-on sticks on
-  // unit 18.
+  // scenario holds with it on every unit: with it, front-wheel-walking-slope-slant-on stalls on
+  // units 18 and 29 of 1–40.
   bool tangential_reload_memory = false;
   // Vertical damping of the contact, per unit area: σ_d = R·v, v the rim's sinking speed (SCM's
   // damping R, as Chrono's SCM terrain has it; 3e4 Pa·s/m is its demonstrations' value, not a
